@@ -1,0 +1,95 @@
+#include "dsp/convolve.h"
+
+#include <algorithm>
+
+#include "dsp/fft.h"
+#include "util/error.h"
+
+namespace tsrir {
+namespace {
+
+// Below this many multiply-adds, direct convolution beats the FFT's fixed costs.
+constexpr size_t kDirectWorkLimit = 4096 * 8;
+
+std::vector<float> direct_float(const std::vector<float>& x, const std::vector<float>& h) {
+  std::vector<float> y(x.size() + h.size() - 1, 0.0f);
+  for (size_t k = 0; k < h.size(); ++k) {
+    const float hk = h[k];
+    if (hk == 0.0f) continue;
+    float* out = y.data() + k;
+    for (size_t n = 0; n < x.size(); ++n) out[n] += hk * x[n];
+  }
+  return y;
+}
+
+}  // namespace
+
+std::vector<double> direct_convolve(const std::vector<double>& x, const std::vector<double>& h) {
+  if (x.empty() || h.empty()) return {};
+  std::vector<double> y(x.size() + h.size() - 1, 0.0);
+  for (size_t k = 0; k < h.size(); ++k)
+    for (size_t n = 0; n < x.size(); ++n) y[n + k] += h[k] * x[n];
+  return y;
+}
+
+Convolver::Convolver(const std::vector<float>& h) : m_(h.size()) {
+  if (h.empty()) throw Error("convolution with an empty filter");
+  if (m_ <= 64) {
+    h_direct_ = h;
+    fft_size_ = block_ = 0;
+    return;
+  }
+  // Overlap-save block: FFT ~4x the filter, as Kaldi does, so each block yields 3/4 useful output.
+  fft_size_ = next_fast_fft_size(4 * m_);
+  block_ = fft_size_ - m_ + 1;
+  h_spectrum_ = rfft(h, fft_size_);
+}
+
+std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
+  if (x.empty()) return {};
+  if (!h_direct_.empty()) return direct_float(x, h_direct_);
+  const size_t out_len = x.size() + m_ - 1;
+  const size_t n = fft_size_;
+  RealFft fft(n);
+  const float scale = 1.0f / static_cast<float>(n);
+  std::vector<float> y(out_len);
+  std::vector<std::complex<float>> X(fft.num_bins());
+  // The whole output fits one transform: no aliasing, one forward and one inverse FFT.
+  if (out_len <= n) {
+    std::vector<float> buf(n, 0.0f);
+    std::copy(x.begin(), x.end(), buf.begin());
+    fft.forward(buf.data(), X.data());
+    for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
+    fft.inverse(X.data(), buf.data());
+    for (size_t i = 0; i < out_len; ++i) y[i] = buf[i] * scale;
+    return y;
+  }
+  // Overlap-save: input segment j covers x[j*B - (M-1) .. j*B + B - 1]; the first M-1 outputs of
+  // each circular convolution are aliased and dropped.
+  std::vector<float> seg(n), res(n);
+  for (size_t start = 0; start < out_len; start += block_) {
+    // Segment begins M-1 samples before the output block start.
+    const long long seg_start = static_cast<long long>(start) - static_cast<long long>(m_ - 1);
+    for (size_t i = 0; i < n; ++i) {
+      long long idx = seg_start + static_cast<long long>(i);
+      seg[i] = (idx >= 0 && idx < static_cast<long long>(x.size())) ? x[static_cast<size_t>(idx)] : 0.0f;
+    }
+    fft.forward(seg.data(), X.data());
+    for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
+    fft.inverse(X.data(), res.data());
+    const size_t count = std::min(block_, out_len - start);
+    for (size_t i = 0; i < count; ++i) y[start + i] = res[m_ - 1 + i] * scale;
+  }
+  return y;
+}
+
+std::vector<float> fft_convolve(const std::vector<float>& x, const std::vector<float>& h) {
+  if (x.empty() || h.empty()) return {};
+  if (x.size() * h.size() <= kDirectWorkLimit) return direct_float(x, h);
+  // The longer operand is the "signal": keeps the FFT size tied to the shorter one.
+  const std::vector<float>& filt = h.size() <= x.size() ? h : x;
+  const std::vector<float>& sig = h.size() <= x.size() ? x : h;
+  return Convolver(filt).convolve(sig);
+}
+
+}  // namespace tsrir

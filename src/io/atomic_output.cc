@@ -1,0 +1,117 @@
+#include "io/atomic_output.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir {
+
+std::string make_temp_path(const std::string& final_path) {
+  static std::atomic<unsigned> counter{0};
+  std::string p = final_path;
+  while (p.size() > 1 && p.back() == '/') p.pop_back();
+  std::string temp = p + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  register_temp_path(temp);
+  return temp;
+}
+
+void commit_temp_path(const std::string& temp_path, const std::string& final_path) {
+  std::error_code ec;
+  fs::rename(temp_path, final_path, ec);
+  if (ec) {
+    throw Error("cannot rename " + temp_path + " to " + final_path + ": " + ec.message());
+  }
+  unregister_temp_path(temp_path);
+}
+
+void discard_temp_path(const std::string& temp_path) {
+  std::error_code ec;
+  fs::remove_all(temp_path, ec);
+  unregister_temp_path(temp_path);
+}
+
+AtomicTextFile::AtomicTextFile(const std::string& final_path) : final_path_(final_path) {
+  if (final_path == "-") {
+    to_stdout_ = true;
+    return;
+  }
+  temp_path_ = make_temp_path(final_path);
+  file_.open(temp_path_, std::ios::out | std::ios::trunc | std::ios::binary);
+  if (!file_) {
+    discard_temp_path(temp_path_);
+    throw Error("cannot open " + final_path + " for writing: " + std::strerror(errno));
+  }
+}
+
+AtomicTextFile::~AtomicTextFile() {
+  if (!to_stdout_ && !committed_) {
+    file_.close();
+    discard_temp_path(temp_path_);
+  }
+}
+
+std::ostream& AtomicTextFile::stream() { return to_stdout_ ? std::cout : file_; }
+
+void AtomicTextFile::commit() {
+  if (to_stdout_) {
+    std::cout.flush();
+    if (!std::cout) throw Error("error writing to standard output");
+    committed_ = true;
+    return;
+  }
+  file_.flush();
+  if (!file_) throw Error("error writing " + final_path_);
+  file_.close();
+  commit_temp_path(temp_path_, final_path_);
+  committed_ = true;
+}
+
+AtomicOutputDir::AtomicOutputDir(const std::string& final_dir) : final_dir_(final_dir) {
+  while (final_dir_.size() > 1 && final_dir_.back() == '/') final_dir_.pop_back();
+  if (final_dir_.empty()) throw Error("empty output directory name");
+  std::error_code ec;
+  fs::path parent = fs::path(final_dir_).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (fs::exists(final_dir_) && !fs::is_directory(final_dir_)) {
+    throw Error(final_dir_ + " exists and is not a directory");
+  }
+  temp_dir_ = make_temp_path(final_dir_);
+  if (!fs::create_directory(temp_dir_, ec) || ec) {
+    unregister_temp_path(temp_dir_);
+    throw Error("cannot create directory " + temp_dir_ + ": " + ec.message());
+  }
+}
+
+AtomicOutputDir::~AtomicOutputDir() {
+  if (!committed_) discard_temp_path(temp_dir_);
+}
+
+void AtomicOutputDir::commit() {
+  std::error_code ec;
+  if (fs::exists(final_dir_)) {
+    // Move the old output aside first so the final name is never half-old, half-new.
+    std::string old = make_temp_path(final_dir_ + ".old");
+    fs::rename(final_dir_, old, ec);
+    if (ec) throw Error("cannot replace " + final_dir_ + ": " + ec.message());
+    commit_temp_path(temp_dir_, final_dir_);
+    discard_temp_path(old);
+  } else {
+    commit_temp_path(temp_dir_, final_dir_);
+  }
+  committed_ = true;
+}
+
+std::string absolute_path(const std::string& path) {
+  if (path.empty() || path == "-") return path;
+  return fs::absolute(fs::path(path)).lexically_normal().string();
+}
+
+}  // namespace tsrir

@@ -1,0 +1,210 @@
+#include "io/data_dir.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "io/kaldi_table.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir {
+
+std::map<std::string, std::vector<std::string>> DataDir::spk2utt() const {
+  std::map<std::string, std::vector<std::string>> m;
+  for (const auto& [utt, spk] : utt2spk) m[spk].push_back(utt);
+  for (auto& [spk, utts] : m) std::sort(utts.begin(), utts.end(), c_locale_less);
+  return m;
+}
+
+std::vector<std::string> DataDir::utterances() const {
+  std::vector<std::string> out;
+  for (const auto& [utt, spk] : utt2spk) out.push_back(utt);
+  std::sort(out.begin(), out.end(), c_locale_less);
+  return out;
+}
+
+namespace {
+
+std::string join(const std::string& dir, const std::string& name) { return (fs::path(dir) / name).string(); }
+
+std::map<std::string, std::string> to_map(const Table& t) {
+  std::map<std::string, std::string> m;
+  for (const auto& e : t.entries) m[e.key] = e.value;
+  return m;
+}
+
+}  // namespace
+
+DataDir read_data_dir(const std::string& dir) {
+  if (!fs::is_directory(dir)) throw Error(dir + ": not a directory");
+  DataDir d;
+  const std::string wav = join(dir, "wav.scp"), u2s = join(dir, "utt2spk");
+  if (!fs::exists(wav)) throw Error(dir + ": no wav.scp");
+  if (!fs::exists(u2s)) throw Error(dir + ": no utt2spk");
+  Table wav_t = read_table(wav);
+  for (const auto& e : wav_t.entries) {
+    if (e.key.find('~') != std::string::npos || e.value.find('~') != std::string::npos) {
+      // Kaldi's validator rejects '~' in wav.scp (it marks backup files).
+      throw Error(located(wav, e.line, "'~' is not allowed in wav.scp"));
+    }
+  }
+  d.wav_scp = to_map(wav_t);
+  Table u2s_t = read_table(u2s);
+  for (const auto& e : u2s_t.entries) {
+    if (split_whitespace(e.value).size() != 1) throw Error(located(u2s, e.line, "expected '<utt> <spk>'"));
+  }
+  d.utt2spk = to_map(u2s_t);
+  if (fs::exists(join(dir, "text"))) {
+    TableReadOptions o;
+    o.allow_empty_value = true;
+    d.text = to_map(read_table(join(dir, "text"), o));
+  }
+  if (fs::exists(join(dir, "segments"))) {
+    const std::string p = join(dir, "segments");
+    Table t = read_table(p);
+    for (const auto& e : t.entries) {
+      auto f = split_whitespace(e.value);
+      if (f.size() != 3) throw Error(located(p, e.line, "expected '<utt> <recording> <start> <end>'"));
+      Segment s;
+      s.recording_id = f[0];
+      s.start_s = parse_double(f[1], located(p, e.line, "start"));
+      s.end_s = parse_double(f[2], located(p, e.line, "end"));
+      if (!(s.end_s > s.start_s) && s.end_s != -1) throw Error(located(p, e.line, "segment end must be after its start"));
+      if (!d.wav_scp.count(s.recording_id)) {
+        throw Error(located(p, e.line, "recording '" + s.recording_id + "' is not in wav.scp"));
+      }
+      d.segments[e.key] = s;
+    }
+  }
+  if (fs::exists(join(dir, "reco2dur"))) {
+    const std::string p = join(dir, "reco2dur");
+    Table t = read_table(p);
+    for (const auto& e : t.entries) d.reco2dur[e.key] = parse_double(e.value, located(p, e.line, "duration"));
+  }
+  if (fs::exists(join(dir, "utt2uniq"))) d.utt2uniq = to_map(read_table(join(dir, "utt2uniq")));
+
+  // Cross-checks, each naming the file and line of the first offender.
+  const std::string u2s_name = u2s;
+  for (const auto& e : u2s_t.entries) {
+    if (d.has_segments()) {
+      if (!d.segments.count(e.key)) throw Error(located(u2s, e.line, "utterance '" + e.key + "' is not in segments"));
+    } else if (!d.wav_scp.count(e.key)) {
+      throw Error(located(u2s, e.line, "utterance '" + e.key + "' is not in wav.scp"));
+    }
+  }
+  if (!d.has_segments()) {
+    for (const auto& e : wav_t.entries)
+      if (!d.utt2spk.count(e.key)) throw Error(located(wav, e.line, "recording '" + e.key + "' has no utt2spk entry"));
+  }
+  if (fs::exists(join(dir, "spk2utt"))) {
+    const std::string p = join(dir, "spk2utt");
+    Table t = read_table(p);
+    auto expected = d.spk2utt();
+    for (const auto& e : t.entries) {
+      auto utts = split_whitespace(e.value);
+      std::sort(utts.begin(), utts.end(), c_locale_less);
+      auto it = expected.find(e.key);
+      if (it == expected.end() || it->second != utts) {
+        throw Error(located(p, e.line, "spk2utt entry for '" + e.key + "' disagrees with utt2spk"));
+      }
+    }
+    if (t.entries.size() != expected.size()) throw Error(p + ": speakers disagree with utt2spk");
+  }
+  return d;
+}
+
+std::vector<std::string> validate_data_dir(const std::string& dir, bool require_text) {
+  std::vector<std::string> problems;
+  auto check_sorted = [&](const std::string& name, bool required) {
+    const std::string p = join(dir, name);
+    if (!fs::exists(p)) {
+      if (required) problems.push_back(p + ": missing");
+      return;
+    }
+    std::ifstream in(p, std::ios::binary);
+    std::string prev, line;
+    int n = 0;
+    while (std::getline(in, line)) {
+      ++n;
+      std::string key = line.substr(0, line.find_first_of(" \t"));
+      if (key.empty()) {
+        problems.push_back(located(p, n, "empty key"));
+        continue;
+      }
+      if (n > 1 && !c_locale_less(prev, key)) {
+        problems.push_back(located(p, n, prev == key ? "duplicate key '" + key + "'" : "not sorted (LC_ALL=C)"));
+      }
+      prev = key;
+    }
+  };
+  for (const char* f : {"wav.scp", "utt2spk", "spk2utt"}) check_sorted(f, true);
+  check_sorted("text", require_text);
+  for (const char* f : {"segments", "utt2uniq", "reco2dur", "reco2file_and_channel", "utt2dur"}) check_sorted(f, false);
+  if (!problems.empty()) return problems;
+  try {
+    DataDir d = read_data_dir(dir);
+    // utt2spk must also be sorted by speaker (validate_data_dir.sh: "utt2spk is not in sorted order when sorted first on speaker-id").
+    std::vector<std::pair<std::string, std::string>> by_spk;
+    for (const auto& [u, s] : d.utt2spk) by_spk.emplace_back(s, u);
+    for (size_t i = 1; i < by_spk.size(); ++i) {
+      if (c_locale_less(by_spk[i].first, by_spk[i - 1].first)) {
+        problems.push_back(join(dir, "utt2spk") + ": not in sorted order when sorted on speaker id (speaker ids must be prefixes of utterance ids)");
+        break;
+      }
+    }
+    if (!fs::exists(join(dir, "spk2utt"))) problems.push_back(join(dir, "spk2utt") + ": missing");
+    auto utts = d.utterances();
+    if (!d.text.empty() || require_text) {
+      for (const auto& u : utts)
+        if (!d.text.count(u)) problems.push_back(join(dir, "text") + ": no entry for utterance '" + u + "'");
+      for (const auto& [u, t] : d.text)
+        if (!d.utt2spk.count(u)) problems.push_back(join(dir, "text") + ": utterance '" + u + "' not in utt2spk");
+    }
+    if (!d.utt2uniq.empty()) {
+      for (const auto& u : utts)
+        if (!d.utt2uniq.count(u)) problems.push_back(join(dir, "utt2uniq") + ": no entry for utterance '" + u + "'");
+    }
+    if (!d.reco2dur.empty()) {
+      for (const auto& [r, v] : d.wav_scp)
+        if (!d.reco2dur.count(r)) problems.push_back(join(dir, "reco2dur") + ": no entry for recording '" + r + "'");
+    }
+  } catch (const Error& e) {
+    problems.push_back(e.what());
+  }
+  return problems;
+}
+
+void write_data_dir(const std::string& dir, const DataDir& d) {
+  using Rows = std::vector<std::pair<std::string, std::string>>;
+  auto rows_of = [](const std::map<std::string, std::string>& m) { return Rows(m.begin(), m.end()); };
+  write_table(join(dir, "wav.scp"), rows_of(d.wav_scp));
+  write_table(join(dir, "utt2spk"), rows_of(d.utt2spk));
+  Rows s2u;
+  for (const auto& [spk, utts] : d.spk2utt()) {
+    std::string v;
+    for (const auto& u : utts) v += (v.empty() ? "" : " ") + u;
+    s2u.emplace_back(spk, v);
+  }
+  write_table(join(dir, "spk2utt"), s2u);
+  if (!d.text.empty()) write_table(join(dir, "text"), rows_of(d.text));
+  if (!d.utt2uniq.empty()) write_table(join(dir, "utt2uniq"), rows_of(d.utt2uniq));
+  if (!d.segments.empty()) {
+    Rows r;
+    for (const auto& [u, s] : d.segments) {
+      r.emplace_back(u, s.recording_id + " " + format_double(s.start_s, 10) + " " + format_double(s.end_s, 10));
+    }
+    write_table(join(dir, "segments"), r);
+  }
+  if (!d.reco2dur.empty()) {
+    Rows r;
+    for (const auto& [k, v] : d.reco2dur) r.emplace_back(k, format_double(v, 10));
+    write_table(join(dir, "reco2dur"), r);
+  }
+}
+
+}  // namespace tsrir

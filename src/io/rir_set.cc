@@ -1,0 +1,112 @@
+#include "io/rir_set.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <set>
+
+#include "io/kaldi_lists.h"
+#include "io/kaldi_table.h"
+#include "io/shell.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir {
+namespace {
+
+bool has_audio_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".wav" || ext == ".flac" || ext == ".ogg" || ext == ".oga" || ext == ".aiff" || ext == ".aif" ||
+         ext == ".au" || ext == ".w64" || ext == ".rf64" || ext == ".caf" || ext == ".opus";
+}
+
+}  // namespace
+
+std::vector<RirRef> read_rir_refs(const std::string& path) {
+  if (!fs::exists(path)) throw Error(path + ": no such file");
+  std::vector<RirRef> refs;
+  if (has_audio_extension(path)) {
+    RirRef r;
+    r.id = fs::path(path).stem().string();
+    r.room_id = r.id;
+    r.rxfilename = path;
+    r.where = path;
+    refs.push_back(r);
+    return refs;
+  }
+  for (const auto& e : read_rir_list(path)) {
+    RirRef r;
+    r.id = e.rir_id;
+    r.room_id = e.room_id;
+    r.rxfilename = e.rxfilename;
+    r.where = path + ":" + std::to_string(e.line);
+    refs.push_back(std::move(r));
+  }
+  return refs;
+}
+
+Signal load_rir(const RirRef& ref, const AudioReadOptions& options) {
+  AudioReadOptions o = options;
+  o.context = ref.where + " (RIR '" + ref.id + "')";
+  Signal s = read_audio(ref.rxfilename, o);
+  s.id = ref.id;
+  return s;
+}
+
+RirSetWriter::RirSetWriter(const std::string& out_dir, SampleFormat format)
+    : dir_(out_dir), format_(format) {}
+
+void RirSetWriter::add(const Signal& rir, const std::string& room_id) {
+  if (rir.id.empty() || rir.id.find_first_of("/ \t\r\n") != std::string::npos || rir.id == "." || rir.id == "..") {
+    throw Error("RIR id '" + rir.id + "' cannot be used as a file name (empty, or contains '/' or whitespace)");
+  }
+  AudioWriteOptions o;
+  o.format = format_;
+  long long clipped = 0;
+  o.clipped_samples = &clipped;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& r : rows_)
+      if (r.id == rir.id) throw Error("duplicate RIR id '" + rir.id + "' in output set");
+    rows_.push_back({rir.id, room_id.empty() ? rir.id : room_id});
+  }
+  write_wav((fs::path(dir_.path()) / (rir.id + ".wav")).string(), rir, o);
+  if (clipped > 0) {
+    throw Error("RIR '" + rir.id + "': " + std::to_string(clipped) +
+                " samples exceed full scale in 16-bit output; normalise it or use --format=float");
+  }
+}
+
+void RirSetWriter::commit() {
+  std::vector<Row> rows;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    rows = rows_;
+  }
+  if (rows.empty()) throw Error("no RIRs to write to " + dir_.final_path());
+  std::vector<std::pair<std::string, std::string>> scp;
+  std::sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return c_locale_less(a.id, b.id); });
+  // Paths in the tables point at the final location, absolute, so the lists work from anywhere.
+  const std::string final_abs = absolute_path(dir_.final_path());
+  {
+    std::ofstream list((fs::path(dir_.path()) / "rir_list").string());
+    for (const auto& r : rows) {
+      const std::string wav = (fs::path(final_abs) / (r.id + ".wav")).string();
+      scp.emplace_back(r.id, wav);
+      RirListEntry e;
+      e.rir_id = r.id;
+      e.room_id = r.room_id;
+      e.rxfilename = wav;
+      list << format_rir_list_line(e) << '\n';
+    }
+    if (!list) throw Error("cannot write " + dir_.final_path() + "/rir_list");
+  }
+  write_table((fs::path(dir_.path()) / "rir.scp").string(), scp);
+  dir_.commit();
+}
+
+}  // namespace tsrir

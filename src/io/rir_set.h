@@ -1,0 +1,47 @@
+// Sets of RIRs as the programs read and write them. Input: a Kaldi scp (<id> <rxfilename>), a
+// Kaldi rir_list (--rir-id ... <rxfilename>), or a single audio file (id = file name without
+// extension). Output: <dir>/<id>.wav, <dir>/rir.scp and <dir>/rir_list, written as one unit.
+#pragma once
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "io/audio_io.h"
+#include "io/atomic_output.h"
+#include "io/signal.h"
+
+namespace tsrir {
+
+struct RirRef {
+  std::string id;
+  std::string room_id;      // from a rir_list; = id otherwise
+  std::string rxfilename;
+  std::string where;        // "file:line" (or the file name) for messages
+};
+
+// Detects the kind of `path` as described above. Errors: missing file, malformed lines,
+// duplicate ids (each with file:line).
+std::vector<RirRef> read_rir_refs(const std::string& path);
+
+// Loads one RIR (resampled if options.target_rate_hz > 0); the Signal's id is ref.id. Errors name
+// the id and where it was listed.
+Signal load_rir(const RirRef& ref, const AudioReadOptions& options = {});
+
+// Writes a complete RIR set into out_dir (replaced atomically at commit()).
+class RirSetWriter {
+ public:
+  RirSetWriter(const std::string& out_dir, SampleFormat format);
+  // Thread-safe. Ids must be unique and usable as file names (else Error).
+  void add(const Signal& rir, const std::string& room_id = "");
+  void commit();   // writes rir.scp and rir_list (sorted by id) and renames the directory
+  const std::string& temp_dir() const { return dir_.path(); }
+
+ private:
+  AtomicOutputDir dir_;
+  SampleFormat format_;
+  struct Row { std::string id, room_id; };
+  std::vector<Row> rows_;
+  std::mutex mutex_;
+};
+
+}  // namespace tsrir
