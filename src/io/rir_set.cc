@@ -64,14 +64,18 @@ void RirSetWriter::add(const Signal& rir, const std::string& room_id) {
   if (rir.id.empty() || rir.id.find_first_of("/ \t\r\n") != std::string::npos || rir.id == "." || rir.id == "..") {
     throw Error("RIR id '" + rir.id + "' cannot be used as a file name (empty, or contains '/' or whitespace)");
   }
+  // A line break in the room id would split its rir_list line: the set could not be read back.
+  if (room_id.find_first_of("\r\n") != std::string::npos) {
+    throw Error("RIR '" + rir.id + "': room id contains a line break");
+  }
   AudioWriteOptions o;
   o.format = format_;
   long long clipped = 0;
   o.clipped_samples = &clipped;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& r : rows_)
-      if (r.id == rir.id) throw Error("duplicate RIR id '" + rir.id + "' in output set");
+    // A set, not a scan of rows_: sets of 10^5 RIRs are normal, and a scan made add() quadratic.
+    if (!ids_.insert(rir.id).second) throw Error("duplicate RIR id '" + rir.id + "' in output set");
     rows_.push_back({rir.id, room_id.empty() ? rir.id : room_id});
   }
   write_wav((fs::path(dir_.path()) / (rir.id + ".wav")).string(), rir, o);

@@ -3,6 +3,7 @@
 // extension). Output: <dir>/<id>.wav, <dir>/rir.scp and <dir>/rir_list, written as one unit.
 #pragma once
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@ class RirSetWriter {
   SampleFormat format_;
   struct Row { std::string id, room_id; };
   std::vector<Row> rows_;
+  std::set<std::string> ids_;
   std::mutex mutex_;
 };
 

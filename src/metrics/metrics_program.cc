@@ -1,0 +1,129 @@
+#include "metrics/metrics_program.h"
+
+#include <chrono>
+#include <exception>
+
+#include "io/atomic_output.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/parallel.h"
+
+namespace tsrir {
+
+void measure_rir_refs(const std::vector<RirRef>& refs, const MetricsRunOptions& options,
+                      const std::function<void(const MetricsOutcome&)>& on_result) {
+  const int threads = std::max(1, options.num_threads);
+  const size_t chunk = options.chunk_size > 0 ? options.chunk_size : 32 * (size_t)threads;
+  AudioReadOptions read;
+  read.channel = options.channel;
+  std::vector<MetricsOutcome> results;
+  auto last_log = std::chrono::steady_clock::now();
+  for (size_t start = 0; start < refs.size(); start += chunk) {
+    const size_t count = std::min(chunk, refs.size() - start);
+    results.assign(count, MetricsOutcome());
+    parallel_for(count, threads, [&](size_t i) {
+      const RirRef& ref = refs[start + i];
+      MetricsOutcome& out = results[i];
+      out.id = ref.id;
+      Signal rir;
+      try {
+        rir = load_rir(ref, read);  // its errors name the list line and the id
+      } catch (const std::exception& e) {
+        out.error = e.what();
+        return;
+      }
+      try {
+        out.metrics = measure_rir(rir, options.metrics);
+        out.ok = true;
+      } catch (const std::exception& e) {
+        out.error = ref.where + ": " + e.what();
+      }
+    });
+    for (const MetricsOutcome& r : results) {
+      if (!r.ok && !options.skip_errors) throw Error(r.error);
+      on_result(r);
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_log > std::chrono::seconds(5)) {
+      log_info("measured " + std::to_string(start + count) + " of " + std::to_string(refs.size()) + " RIRs");
+      last_log = now;
+    }
+  }
+}
+
+namespace {
+
+std::vector<RirRef> read_inputs(const std::vector<std::string>& paths) {
+  std::vector<RirRef> all;
+  for (const std::string& p : paths) {
+    std::vector<RirRef> refs = read_rir_refs(p);
+    all.insert(all.end(), std::make_move_iterator(refs.begin()), std::make_move_iterator(refs.end()));
+  }
+  return all;
+}
+
+struct RunCounts {
+  size_t ok = 0, failed = 0;
+};
+
+RunCounts summarise_set(const std::string& path, const MetricsRunOptions& run, MetricsSummary* summary) {
+  RunCounts c;
+  measure_rir_refs(read_rir_refs(path), run, [&](const MetricsOutcome& r) {
+    if (r.ok) {
+      summary->add(r.metrics);
+      ++c.ok;
+    } else {
+      log_warning("skipping: " + r.error);
+      ++c.failed;
+    }
+  });
+  return c;
+}
+
+}  // namespace
+
+int run_rir_metrics(const RirMetricsCommand& command) {
+  AtomicTextFile output(command.output);
+  RunCounts total;
+  if (!command.reference.empty()) {
+    const std::string definition = metrics_definition_name(command.run.metrics.definition);
+    NamedSummary reference{command.reference, {}};
+    RunCounts c = summarise_set(command.reference, command.run, &reference.summary);
+    total.ok += c.ok;
+    total.failed += c.failed;
+    std::vector<NamedSummary> sets;
+    for (const std::string& input : command.inputs) {
+      sets.push_back({input, {}});
+      c = summarise_set(input, command.run, &sets.back().summary);
+      total.ok += c.ok;
+      total.failed += c.failed;
+    }
+    if (command.format == MetricsFormat::kJson) {
+      write_reference_json(output.stream(), reference, sets, definition);
+    } else {
+      write_reference_table(output.stream(), reference, sets, definition);
+    }
+  } else {
+    const std::vector<RirRef> refs = read_inputs(command.inputs);
+    MetricsReport report(output.stream(), command.format, command.bands);
+    measure_rir_refs(refs, command.run, [&](const MetricsOutcome& r) {
+      if (r.ok) {
+        report.add(r.metrics);
+        ++total.ok;
+      } else {
+        log_warning("skipping: " + r.error);
+        report.add_error(r.id, r.error);
+        ++total.failed;
+      }
+    });
+    report.finish();
+  }
+  output.commit();
+  if (total.failed > 0) {
+    log_warning(std::to_string(total.failed) + " RIR(s) skipped because of errors, " + std::to_string(total.ok) +
+                " measured");
+  }
+  return total.ok == 0 && total.failed > 0 ? 1 : 0;
+}
+
+}  // namespace tsrir

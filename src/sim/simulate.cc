@@ -1,0 +1,59 @@
+#include "sim/simulate.h"
+
+#include <atomic>
+#include <cmath>
+#include <string>
+
+#include "io/rir_set.h"
+#include "sim/model.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/parallel.h"
+#include "util/strings.h"
+
+namespace tsrir::sim {
+
+size_t rir_length_samples(const std::string& length, double auto_length_s, double sample_rate_hz) {
+  double seconds = auto_length_s;
+  if (length != "auto") {
+    seconds = parse_double(length, "--length");
+    if (!(seconds > 0.0 && seconds <= 60.0)) {
+      throw Error("--length must be 'auto' or seconds in (0, 60], got '" + length + "'");
+    }
+  }
+  return static_cast<size_t>(std::llround(seconds * sample_rate_hz));
+}
+
+void simulate_room_list(const std::vector<RoomSpec>& rooms, const std::string& out_dir,
+                             const SimulateOptions& options) {
+  if (!(options.sample_rate_hz >= 1000.0 && options.sample_rate_hz <= 384000.0)) {
+    throw Error("--fs must be in [1000, 384000] Hz, got " + format_double(options.sample_rate_hz));
+  }
+  if (options.num_threads < 1) throw Error("--num-threads must be at least 1");
+  const Model model = Model::parse(options.model);
+  // Everything that can fail on input fails here, before any output exists.
+  std::vector<RoomSpec> prepared;
+  std::vector<size_t> lengths;
+  for (const RoomSpec& room : rooms) {
+    validate_room(room);
+    prepared.push_back(model.prepare_room(room));
+    lengths.push_back(rir_length_samples(options.length, model.auto_length_s(prepared.back()),
+                                         options.sample_rate_hz));
+    if (lengths.back() < 16) throw Error(room.where + ": RIR length below 16 samples");
+  }
+
+  RirSetWriter writer(out_dir, options.format);
+  std::atomic<size_t> done{0};
+  const size_t progress_every = std::max<size_t>(1, rooms.size() / 10);
+  parallel_for(rooms.size(), options.num_threads, [&](size_t i) {
+    Signal rir = model.render(rooms[i], options.sample_rate_hz, lengths[i], options.seed);
+    writer.add(rir, rooms[i].effective_room_id());
+    const size_t d = ++done;
+    if (rooms.size() >= 100 && d % progress_every == 0) {
+      log_info("simulated " + std::to_string(d) + " / " + std::to_string(rooms.size()) + " RIRs");
+    }
+  });
+  writer.commit();
+}
+
+}  // namespace tsrir::sim
