@@ -40,7 +40,10 @@ Convolver::Convolver(const std::vector<float>& h) : m_(h.size()) {
     return;
   }
   // Overlap-save block: FFT ~4x the filter, as Kaldi does, so each block yields 3/4 useful output.
-  fft_size_ = next_fast_fft_size(4 * m_);
+  // A power of two: FFTW plans those about twice as fast (4 ms vs 8 ms at 64k with FFTW_ESTIMATE),
+  // which dominates a one-utterance pipe process.
+  fft_size_ = 1;
+  while (fft_size_ < 4 * m_) fft_size_ *= 2;
   block_ = fft_size_ - m_ + 1;
   h_spectrum_ = rfft(h, fft_size_);
 }
@@ -70,10 +73,12 @@ std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
   for (size_t start = 0; start < out_len; start += block_) {
     // Segment begins M-1 samples before the output block start.
     const long long seg_start = static_cast<long long>(start) - static_cast<long long>(m_ - 1);
-    for (size_t i = 0; i < n; ++i) {
-      long long idx = seg_start + static_cast<long long>(i);
-      seg[i] = (idx >= 0 && idx < static_cast<long long>(x.size())) ? x[static_cast<size_t>(idx)] : 0.0f;
-    }
+    // Copy the part of the segment that overlaps x; zeros before its start and after its end.
+    const long long nx = static_cast<long long>(x.size());
+    const long long lo = std::max<long long>(seg_start, 0);
+    const long long hi = std::min<long long>(seg_start + static_cast<long long>(n), nx);
+    std::fill(seg.begin(), seg.end(), 0.0f);
+    if (hi > lo) std::copy(x.begin() + lo, x.begin() + hi, seg.begin() + (lo - seg_start));
     fft.forward(seg.data(), X.data());
     for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
     fft.inverse(X.data(), res.data());

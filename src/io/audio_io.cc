@@ -312,10 +312,11 @@ std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, do
         std::memcpy(&u, &v, 4);
         put_u32(b, u);
       } else {
-        double s = std::round(static_cast<double>(v) * 32768.0);
-        if (s > 32767.0 || s < -32768.0) {
+        // Round to nearest in float (exact for |v| < 2^8) and clip; Kaldi truncates toward zero.
+        float s = std::nearbyint(v * 32768.0f);
+        if (s > 32767.0f || s < -32768.0f) {
           ++clipped;
-          s = std::clamp(s, -32768.0, 32767.0);
+          s = std::clamp(s, -32768.0f, 32767.0f);
         }
         put_u16(b, static_cast<uint16_t>(static_cast<int16_t>(s)));
       }

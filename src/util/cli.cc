@@ -7,6 +7,7 @@
 
 #include "util/cleanup.h"
 #include "util/error.h"
+#include "util/strings.h"
 
 namespace po = boost::program_options;
 
@@ -29,9 +30,14 @@ CommandLine::CommandLine(std::string program, std::string usage)
   options_.add_options()("help,h", "Print this usage message and exit");
 }
 
+void CommandLine::option(const std::string& name, double* value, const std::string& help) {
+  options_.add_options()(name.c_str(), po::value<double>(value)->default_value(*value, format_double(*value, 10)),
+                         help.c_str());
+}
+
 void CommandLine::flag(const std::string& name, bool* value, const std::string& help) {
   options_.add_options()(name.c_str(),
-                         po::value<bool>(value)->default_value(*value)->implicit_value(true),
+                         po::value<bool>(value)->default_value(*value, *value ? "true" : "false")->implicit_value(true, "true"),
                          help.c_str());
   flags_.emplace_back(name, value);
 }

@@ -19,6 +19,8 @@ class CommandLine {
   void option(const std::string& name, T* value, const std::string& help) {
     options_.add_options()(name.c_str(), boost::program_options::value<T>(value)->default_value(*value), help.c_str());
   }
+  // Doubles show their default as written by a person ("0.1", not "0.10000000000000001").
+  void option(const std::string& name, double* value, const std::string& help);
   // A boolean: `--name`, `--name=true|false` (also 1/0, yes/no).
   void flag(const std::string& name, bool* value, const std::string& help);
   // A string option that may be given several times (e.g. --rir-set-parameters).

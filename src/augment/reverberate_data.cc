@@ -1,0 +1,311 @@
+#include "augment/reverberate_data.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+
+#include "augment/augment_plan.h"
+#include "augment/augment_sources.h"
+#include "augment/sampling.h"
+#include "augment/wav_reverberate.h"
+#include "io/atomic_output.h"
+#include "io/audio_io.h"
+#include "io/data_dir.h"
+#include "io/kaldi_table.h"
+#include "io/rxfile.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/parallel.h"
+#include "util/strings.h"
+
+namespace tsrir {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Loads each (item, sample rate) once, on first use, from whichever thread needs it first;
+// other threads wanting the same item wait for that load instead of repeating it.
+template <typename T>
+class LoadOnceCache {
+ public:
+  std::shared_ptr<const T> get(const std::pair<long, double>& key, const std::function<T()>& load) {
+    std::shared_ptr<Slot> slot;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      auto& s = slots_[key];
+      if (!s) s = std::make_shared<Slot>();
+      slot = s;
+    }
+    std::call_once(slot->once, [&] {
+      try {
+        slot->value = std::make_shared<const T>(load());
+      } catch (...) {
+        slot->error = std::current_exception();
+      }
+    });
+    if (slot->error) std::rethrow_exception(slot->error);
+    return slot->value;
+  }
+
+ private:
+  struct Slot {
+    std::once_flag once;
+    std::shared_ptr<const T> value;
+    std::exception_ptr error;
+  };
+  std::mutex mutex_;
+  std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
+};
+
+double audio_duration_s(const std::string& rx, const std::string& where) {
+  try {
+    if (is_pipe_rxfilename(rx) || trim(rx) == "-") {
+      AudioInfo info;
+      std::vector<std::vector<float>> channels = read_audio_channels(rx, &info, where);
+      return static_cast<double>(channels.at(0).size()) / info.sample_rate_hz;
+    }
+    AudioInfo info = probe_audio(trim(rx));
+    if (info.frames <= 0) throw Error("zero-length audio");
+    return static_cast<double>(info.frames) / info.sample_rate_hz;
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
+}
+
+// Kaldi's ids for the tables keyed by recording or utterance; `rename_first_value` also renames
+// the first value field (reco2file_and_channel's file id).
+void copy_renamed_table(const std::string& in_path, const std::string& out_path, const std::string& prefix,
+                        const std::vector<int>& copies, bool rename_first_value) {
+  Table table = read_table(in_path);
+  std::vector<std::pair<std::string, std::string>> rows;
+  for (int copy : copies) {
+    for (const TableEntry& e : table.entries) {
+      std::string value = e.value;
+      if (rename_first_value) {
+        std::vector<std::string> fields = split_whitespace(value);
+        if (fields.empty()) throw Error(table.where(e) + ": missing value");
+        fields[0] = copy_id(fields[0], prefix, copy);
+        value.clear();
+        for (size_t i = 0; i < fields.size(); ++i) value += (i ? " " : "") + fields[i];
+      }
+      rows.emplace_back(copy_id(e.key, prefix, copy), value);
+    }
+  }
+  write_table(out_path, std::move(rows));
+}
+
+bool path_is_inside(const std::string& path, const std::string& dir) {
+  const std::string p = absolute_path(path), d = absolute_path(dir);
+  return p.size() > d.size() && p.compare(0, d.size(), d) == 0 && p[d.size()] == '/';
+}
+
+}  // namespace
+
+std::string default_pipe_program() {
+  char buffer[4096];
+  ssize_t n = readlink("/proc/self/exe", buffer, sizeof buffer - 1);
+  if (n > 0) {
+    buffer[n] = '\0';
+    fs::path sibling = fs::path(buffer).parent_path() / "wav-reverberate";
+    if (access(sibling.c_str(), X_OK) == 0) return sibling.string();
+  }
+  return "wav-reverberate";
+}
+
+ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
+                                            const ReverberateDataOptions& options) {
+  if (options.speech_rvb_probability < 0 || options.speech_rvb_probability > 1)
+    throw Error("--speech-rvb-probability must be in [0, 1]");
+  if (options.noise_addition_probability < 0 || options.noise_addition_probability > 1)
+    throw Error("--noise-addition-probability must be in [0, 1]");
+  if (options.noise_start != "random" && options.noise_start != "zero")
+    throw Error("--noise-start must be random or zero, got '" + options.noise_start + "'");
+  if (absolute_path(in_dir) == absolute_path(out_dir)) throw Error("input and output data dirs are the same");
+
+  const DataDir input = read_data_dir(in_dir);
+  if (input.wav_scp.empty()) throw Error(in_dir + "/wav.scp: no recordings");
+  const AugmentSources sources = load_augment_sources(options.rir_set_parameters, options.noise_set_parameters,
+                                                      options.rir_smoothing_weight, options.noise_smoothing_weight);
+  if (sources.rirs.empty() && sources.noises.empty())
+    throw Error("nothing to apply: give --rir-set-parameters and/or --noise-set-parameters");
+  const SnrSpec snrs = SnrSpec::parse(options.snrs, "--snrs");
+
+  PlanOptions plan_options;
+  plan_options.num_replications = options.num_replications;
+  plan_options.include_original_data = options.include_original_data;
+  plan_options.prefix = options.prefix;
+  if (plan_options.prefix.empty() && (options.num_replications > 1 || options.include_original_data)) {
+    log_warning("--prefix set to 'rvb' as there is more than one copy of each utterance (as Kaldi does)");
+    plan_options.prefix = "rvb";
+  }
+  plan_options.speech_rvb_probability = options.speech_rvb_probability;
+  plan_options.noise_addition_probability = options.noise_addition_probability;
+  plan_options.random_noise_start = options.noise_start == "random";
+  plan_options.random_seed = options.random_seed;
+  std::vector<RecordingPlan> plans = plan_recordings(input.wav_scp, sources, snrs, plan_options);
+
+  std::map<long, double> noise_duration_s;
+  std::set<long> used_rirs;
+  for (const RecordingPlan& plan : plans) {
+    if (plan.noise >= 0 && !noise_duration_s.count(plan.noise)) {
+      const NoiseChoice& n = sources.noises[static_cast<size_t>(plan.noise)];
+      noise_duration_s[plan.noise] = audio_duration_s(n.rxfilename, n.where + " (noise '" + n.id + "')");
+    }
+    if (plan.rir >= 0) used_rirs.insert(plan.rir);
+  }
+  resolve_noise_offsets(noise_duration_s, &plans);
+
+  AtomicOutputDir out(out_dir);
+  DataDir output;
+  ReverberateDataSummary summary;
+  for (const RecordingPlan& plan : plans) {
+    summary.reverberated += plan.rir >= 0;
+    summary.with_noise += plan.noise >= 0;
+  }
+
+  std::unique_ptr<AtomicOutputDir> separate_wav_dir;
+  if (options.write_wavs.empty()) {
+    // Pipes: fail now, not inside a feature-extraction job, on RIR files that cannot be read.
+    for (long r : used_rirs) {
+      const RirChoice& rir = sources.rirs[static_cast<size_t>(r)];
+      if (!is_pipe_rxfilename(rir.rxfilename)) audio_duration_s(rir.rxfilename, rir.where + " (RIR '" + rir.id + "')");
+    }
+    PipeOptions pipe;
+    pipe.program = options.pipe_program.empty() ? default_pipe_program() : options.pipe_program;
+    pipe.shift_output = options.shift_output;
+    pipe.normalize_output = options.normalize_output;
+    pipe.snr_reference = options.snr_reference;
+    for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = format_pipe(plan, sources, pipe);
+  } else {
+    std::string temp_wav_dir;
+    const std::string final_wav_dir = absolute_path(options.write_wavs);
+    if (path_is_inside(final_wav_dir, out_dir)) {
+      temp_wav_dir = out.path() + final_wav_dir.substr(absolute_path(out_dir).size());
+    } else {
+      if (path_is_inside(out_dir, final_wav_dir) || absolute_path(out_dir) == final_wav_dir)
+        throw Error("--write-wavs directory " + options.write_wavs + " must not contain the output data dir");
+      separate_wav_dir = std::make_unique<AtomicOutputDir>(final_wav_dir);
+      temp_wav_dir = separate_wav_dir->path();
+    }
+    fs::create_directories(temp_wav_dir);
+
+    ReverbOptions reverb;
+    reverb.shift_output = options.shift_output;
+    reverb.normalize_output = options.normalize_output;
+    reverb.snr_reference = options.snr_reference;
+    reverb.loop_additive_signals = true;
+
+    LoadOnceCache<PreparedRir> rir_cache;
+    LoadOnceCache<std::vector<float>> noise_cache;
+    std::atomic<size_t> done{0};
+    std::atomic<long long> clipped{0};
+    const auto started = std::chrono::steady_clock::now();
+    std::mutex progress_mutex;
+    auto last_report = started;
+    parallel_for(plans.size(), options.num_threads, [&](size_t i) {
+      const RecordingPlan& plan = plans[i];
+      if (plan.new_id.find('/') != std::string::npos)
+        throw Error("recording id '" + plan.new_id + "' contains '/', which cannot name a wav file");
+      const std::string where = in_dir + "/wav.scp: recording '" + plan.source_id + "'";
+      AudioInfo info;
+      std::vector<std::vector<float>> speech = read_audio_channels(plan.source_rx, &info, where);
+      const double rate = info.sample_rate_hz;
+      if (options.source_sampling_rate_hz > 0 && rate != options.source_sampling_rate_hz)
+        throw Error(where + ": sample rate " + format_double(rate) + " Hz, but --source-sampling-rate is " +
+                    format_double(options.source_sampling_rate_hz));
+      std::shared_ptr<const PreparedRir> rir;
+      if (plan.rir >= 0) {
+        const RirChoice& choice = sources.rirs[static_cast<size_t>(plan.rir)];
+        rir = rir_cache.get({plan.rir, rate}, [&] {
+          std::vector<std::vector<float>> ch =
+              read_channels_at_rate(choice.rxfilename, rate, choice.where + " (RIR '" + choice.id + "')");
+          return PreparedRir(std::move(ch.at(0)), rate);
+        });
+      }
+      std::vector<AdditiveSignal> additive;
+      if (plan.noise >= 0) {
+        const NoiseChoice& choice = sources.noises[static_cast<size_t>(plan.noise)];
+        std::shared_ptr<const std::vector<float>> noise = noise_cache.get({plan.noise, rate}, [&] {
+          std::vector<std::vector<float>> ch =
+              read_channels_at_rate(choice.rxfilename, rate, choice.where + " (noise '" + choice.id + "')");
+          return std::move(ch.at(0));
+        });
+        AdditiveSignal a;
+        a.samples = noise;
+        a.snr_db = plan.snr_db;
+        a.start_time_s = 0.0;
+        a.offset_s = plan.noise_offset_s;
+        additive.push_back(std::move(a));
+      }
+      Signal result;
+      result.id = plan.new_id;
+      result.sample_rate_hz = rate;
+      result.samples = reverberate_channel(speech.at(0), rate, rir.get(), additive, reverb);
+      long long clipped_here = 0;
+      AudioWriteOptions write_options;
+      write_options.clipped_samples = &clipped_here;
+      write_wav(temp_wav_dir + "/" + plan.new_id + ".wav", result, write_options);
+      clipped += clipped_here;
+      const size_t finished = ++done;
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_report > std::chrono::seconds(5) || finished == plans.size()) {
+        last_report = now;
+        const double elapsed = std::chrono::duration<double>(now - started).count();
+        log_info("wrote " + std::to_string(finished) + "/" + std::to_string(plans.size()) + " wavs (" +
+                 format_double(finished / std::max(elapsed, 1e-9), 4) + " per second)");
+      }
+    });
+    if (clipped > 0)
+      log_warning("clipped " + std::to_string(clipped.load()) + " samples in total; consider --normalize-output=true");
+    for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = final_wav_dir + "/" + plan.new_id + ".wav";
+  }
+
+  std::vector<int> copies;
+  for (int c = options.include_original_data ? 0 : 1; c <= options.num_replications; ++c) copies.push_back(c);
+  const std::string& prefix = plan_options.prefix;
+  for (int copy : copies) {
+    for (const auto& [utt, spk] : input.utt2spk) {
+      const std::string new_utt = copy_id(utt, prefix, copy);
+      output.utt2spk[new_utt] = copy_id(spk, prefix, copy);
+      auto text = input.text.find(utt);
+      if (text != input.text.end()) output.text[new_utt] = text->second;
+      auto uniq = input.utt2uniq.find(utt);
+      output.utt2uniq[new_utt] = uniq != input.utt2uniq.end() ? uniq->second : utt;
+      auto seg = input.segments.find(utt);
+      if (seg != input.segments.end()) {
+        Segment s = seg->second;
+        s.recording_id = copy_id(s.recording_id, prefix, copy);
+        output.segments[new_utt] = s;
+      }
+    }
+  }
+  write_data_dir(out.path(), output);
+  if (fs::exists(in_dir + "/reco2file_and_channel"))
+    copy_renamed_table(in_dir + "/reco2file_and_channel", out.path() + "/reco2file_and_channel", prefix, copies, true);
+  if (fs::exists(in_dir + "/vad.scp"))
+    copy_renamed_table(in_dir + "/vad.scp", out.path() + "/vad.scp", prefix, copies, false);
+
+  std::vector<std::string> problems = validate_data_dir(out.path(), !input.text.empty());
+  if (!problems.empty()) {
+    std::string message = "the output data dir failed validation:";
+    for (const std::string& p : problems) message += "\n  " + p;
+    throw Error(message);
+  }
+  if (separate_wav_dir) separate_wav_dir->commit();
+  out.commit();
+  summary.recordings = output.wav_scp.size();
+  summary.utterances = output.utt2spk.size();
+  log_info(out_dir + ": " + std::to_string(summary.recordings) + " recordings (" + std::to_string(summary.reverberated) +
+           " reverberated, " + std::to_string(summary.with_noise) + " with noise), " +
+           std::to_string(summary.utterances) + " utterances");
+  return summary;
+}
+
+}  // namespace tsrir

@@ -1,0 +1,52 @@
+// reverberate-data: a far-field copy of a Kaldi data directory (Kaldi's
+// steps/data/reverberate_data_dir.py semantics for ids and files; our per-utterance draws).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "augment/reverberate.h"
+
+namespace tsrir {
+
+struct ReverberateDataOptions {
+  std::vector<std::string> rir_set_parameters;     // "[weight,] rir_list"
+  std::vector<std::string> noise_set_parameters;   // "[weight,] noise_list"
+  int num_replications = 1;
+  std::string prefix;                              // forced to "rvb" for >1 copy or the original
+  std::string snrs = "1:2";                        // see SnrSpec
+  double speech_rvb_probability = 1.0;
+  double noise_addition_probability = 1.0;
+  std::string noise_start = "random";              // random | zero
+  bool shift_output = true;
+  bool normalize_output = true;
+  bool include_original_data = false;
+  uint64_t random_seed = 0;
+  double source_sampling_rate_hz = 0.0;            // > 0: speech must have this rate
+  double rir_smoothing_weight = 0.3;
+  double noise_smoothing_weight = 0.3;
+  SnrReference snr_reference = SnrReference::kEarlyReverb;
+  std::string write_wavs;                          // "" = pipes in wav.scp
+  std::string pipe_program;                        // "" = wav-reverberate next to this program
+  int num_threads = 1;
+};
+
+struct ReverberateDataSummary {
+  size_t recordings = 0;     // output wav.scp entries
+  size_t utterances = 0;     // output utt2spk entries
+  size_t reverberated = 0;   // entries with an RIR
+  size_t with_noise = 0;     // entries with noise
+};
+
+// Reads `in_dir`, writes `out_dir` (and with write_wavs the wavs) atomically: on any error the
+// previous contents stay and no partial directory appears. The result is checked with
+// validate_data_dir() before it is committed.
+ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
+                                            const ReverberateDataOptions& options);
+
+// Default pipe program: "wav-reverberate" in the directory of the running executable if it
+// exists there (so pipes use our implementation even when Kaldi's is first on PATH), else the
+// bare name, found through PATH when the pipe runs.
+std::string default_pipe_program();
+
+}  // namespace tsrir

@@ -1,0 +1,48 @@
+// The body of the `wav-reverberate` program: Kaldi's per-utterance contract (options, rx/wx
+// filenames, output rules) on top of reverberate_channel(), reading any format libsndfile reads
+// (16/24/32-bit PCM, float; any sample rate) instead of Kaldi's 16-bit-only reader.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "augment/reverberate.h"
+
+namespace tsrir {
+
+struct WavReverberateConfig {
+  std::string impulse_response;     // rxfilename, "" = none
+  std::string additive_signals;     // comma-separated rxfilenames
+  std::string snrs;                 // comma-separated dB
+  std::string start_times;          // comma-separated s
+  std::string additive_offsets;     // extension: comma-separated s (default 0 each)
+  bool multi_channel_output = false;
+  int input_wave_channel = 0;
+  int rir_channel = 0;
+  int noise_channel = 0;
+  ReverbOptions reverb;
+};
+
+// All channels of an rxfilename, resampled (libsox) to `sample_rate_hz` when their rate differs.
+// Both output modes of reverberate-data load RIRs and noises through this, so they agree exactly.
+std::vector<std::vector<float>> read_channels_at_rate(const std::string& rx, double sample_rate_hz,
+                                                      const std::string& context);
+
+// Splits Kaldi's comma lists (empty fields dropped, as SplitStringToVector(..., true) does).
+std::vector<std::string> split_comma_list(const std::string& text);
+
+// Reads `input_rx`, reverberates every output channel and writes `output_wx` ("-" = stdout,
+// "| command" = a pipe, else a file written atomically) as 16-bit PCM. Errors name the offending
+// option or file. Returns the number of clipped samples (also logged as a warning).
+long long run_wav_reverberate(const WavReverberateConfig& config, const std::string& input_rx,
+                              const std::string& output_wx);
+
+// The same, in memory: channels in, channels out (used by reverberate-data's materialised mode
+// and by the tests). `rir_channels` may be empty (no RIR).
+std::vector<std::vector<float>> wav_reverberate_channels(
+    const std::vector<std::vector<float>>& input_channels, double sample_rate_hz,
+    const std::vector<std::vector<float>>& rir_channels,
+    const std::vector<std::vector<std::vector<float>>>& additive_channels,
+    const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
+    const std::vector<double>& offsets_s, const WavReverberateConfig& config);
+
+}  // namespace tsrir

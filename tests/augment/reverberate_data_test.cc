@@ -1,0 +1,233 @@
+// reverberate-data end to end: Kaldi data dirs in, validated data dirs out, pipes that
+// regenerate exactly what --write-wavs materialises, and failures that leave nothing behind.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "io/audio_io.h"
+#include "io/data_dir.h"
+#include "io/kaldi_lists.h"
+#include "io/rxfile.h"
+#include "reference_model.h"
+#include "util/strings.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBin = std::string(TSRIR_BIN_DIR) + "/reverberate-data";
+
+struct CliRun {
+  int status;
+  std::string log;
+};
+
+CliRun run_in(const std::string& dir, const std::string& args) {
+  const std::string log = dir + "/last.log";
+  const std::string cmd = "cd " + dir + " && " + kBin + " " + args + " > " + log + " 2>&1";
+  int status = std::system(cmd.c_str());
+  std::ifstream f(log);
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  fs::create_directories(fs::path(path).parent_path());
+  std::ofstream(path) << text;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream f(path);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+// A small corpus: 2 speakers x 3 recordings (0.6-1.4 s), one under a hostile file name; RIRs in
+// two rooms (16-bit, float, 48 kHz); an isotropic noise linked to room A, a point-source noise
+// at 8 kHz, a short one (0.3 s, looped).
+class ReverberateData : public ::testing::Test {
+ protected:
+  std::string dir;
+  void SetUp() override {
+    dir = reftest::make_temp_dir("rvbdata");
+    for (const char* sub : {"/audio", "/rirs", "/noise", "/lists"}) fs::create_directories(dir + sub);
+    std::string wav_scp, utt2spk, text;
+    int k = 0;
+    for (const std::string spk : {"spkA", "spkB"}) {
+      for (int i = 0; i < 3; ++i, ++k) {
+        const std::string utt = spk + "-u" + std::to_string(i);
+        const std::string file = (k == 4) ? "audio/it's a;b $(touch PWNED).wav" : "audio/" + utt + ".wav";
+        reftest::write_wav(dir + "/" + file, {reftest::quantise16(reftest::speech_like(9600 + 3200 * i, 16000, 100 + k))},
+                           16000, 16);
+        wav_scp += utt + " " + dir + "/" + file + "\n";
+        utt2spk += utt + " " + spk + "\n";
+        text += utt + " HELLO WORLD " + std::to_string(k) + "\n";
+      }
+    }
+    write_text(dir + "/in/wav.scp", wav_scp);
+    write_text(dir + "/in/utt2spk", utt2spk);
+    write_text(dir + "/in/text", text);
+    reftest::write_wav(dir + "/rirs/a1.wav", {reftest::quantise16(reftest::synthetic_rir(4000, 16000, 40, 0.3, 1))}, 16000, 16);
+    reftest::write_wav(dir + "/rirs/a2 f;loat'.wav", {reftest::synthetic_rir(6000, 16000, 70, 0.5, 2)}, 16000, 32, true);
+    reftest::write_wav(dir + "/rirs/b1_48k.wav", {reftest::synthetic_rir(12000, 48000, 100, 0.2, 3)}, 48000, 16);
+    tsrir::RirListEntry a1, a2, b1;
+    a1.rir_id = "a1"; a1.room_id = "roomA"; a1.rxfilename = "rirs/a1.wav";
+    a2.rir_id = "a2"; a2.room_id = "roomA"; a2.rxfilename = "rirs/a2 f;loat'.wav";
+    b1.rir_id = "b1"; b1.room_id = "roomB"; b1.rxfilename = "rirs/b1_48k.wav";
+    write_text(dir + "/lists/rir_list_a", tsrir::format_rir_list_line(a1) + "\n" + tsrir::format_rir_list_line(a2) + "\n");
+    write_text(dir + "/lists/rir_list_b", tsrir::format_rir_list_line(b1) + "\n");
+    reftest::write_wav(dir + "/noise/iso_a.wav", {reftest::quantise16(reftest::noise_signal(48000, 4))}, 16000, 16);
+    reftest::write_wav(dir + "/noise/ps_8k.wav", {reftest::quantise16(reftest::noise_signal(16000, 5))}, 8000, 16);
+    reftest::write_wav(dir + "/noise/short.wav", {reftest::quantise16(reftest::noise_signal(4800, 6))}, 16000, 16);
+    write_text(dir + "/lists/noise_list",
+               "--noise-id iso_a --noise-type isotropic --room-linkage roomA noise/iso_a.wav\n"
+               "--noise-id ps_8k --noise-type point-source --bg-fg-type background noise/ps_8k.wav\n"
+               "--noise-id short --noise-type point-source noise/short.wav\n");
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir);
+  }
+  std::string lists() const {
+    return "--rir-set-parameters '0.6, lists/rir_list_a' --rir-set-parameters 'lists/rir_list_b' "
+           "--noise-set-parameters lists/noise_list ";
+  }
+};
+
+TEST_F(ReverberateData, PipesRegenerateTheMaterialisedAudio) {
+  CliRun piped = run_in(dir, lists() + "--random-seed 5 --snrs 1:2 in out_pipe");
+  ASSERT_EQ(piped.status, 0) << piped.log;
+  CliRun written = run_in(dir, lists() + "--random-seed 5 --snrs 1:2 --write-wavs out_wav/wavs --num-threads 2 in out_wav");
+  ASSERT_EQ(written.status, 0) << written.log;
+  for (const std::string out : {"out_pipe", "out_wav"}) {
+    EXPECT_TRUE(tsrir::validate_data_dir(dir + "/" + out, true).empty()) << out;
+    EXPECT_TRUE(fs::exists(dir + "/" + out + "/utt2uniq"));
+  }
+  tsrir::DataDir p = tsrir::read_data_dir(dir + "/out_pipe"), w = tsrir::read_data_dir(dir + "/out_wav");
+  ASSERT_EQ(p.wav_scp.size(), 6u);
+  EXPECT_EQ(p.utt2spk, w.utt2spk);
+  EXPECT_EQ(p.text.at("spkA-u1"), "HELLO WORLD 1");
+  int with_noise = 0;
+  for (const auto& [id, pipe] : p.wav_scp) {
+    ASSERT_TRUE(tsrir::ends_with(pipe, " - |")) << pipe;
+    EXPECT_NE(pipe.find(std::string(TSRIR_BIN_DIR) + "/wav-reverberate"), std::string::npos);
+    with_noise += pipe.find("--additive-signals=") != std::string::npos;
+    // Pipes run from the directory the lists' relative paths refer to, as in Kaldi recipes.
+    std::vector<char> bytes = tsrir::run_command_capture("cd " + dir + " && " + pipe.substr(0, pipe.size() - 1), id);
+    tsrir::AudioInfo info;
+    auto regenerated = tsrir::decode_audio_bytes(bytes, &info, id);
+    auto materialised = tsrir::read_audio(w.wav_scp.at(id));
+    EXPECT_EQ(regenerated.at(0), materialised.samples) << id;
+    EXPECT_EQ(info.sample_rate_hz, 16000);
+  }
+  EXPECT_GT(with_noise, 0);
+  EXPECT_FALSE(fs::exists(dir + "/PWNED"));
+}
+
+TEST_F(ReverberateData, SameSeedSameOutputForAnyThreadCount) {
+  ASSERT_EQ(run_in(dir, lists() + "--random-seed 9 --write-wavs w1 --num-threads 1 in o1").status, 0);
+  ASSERT_EQ(run_in(dir, lists() + "--random-seed 9 --write-wavs w2 --num-threads 2 in o2").status, 0);
+  for (const auto& entry : fs::directory_iterator(dir + "/w1")) {
+    const std::string name = entry.path().filename();
+    EXPECT_EQ(read_text(entry.path()), read_text(dir + "/w2/" + name)) << name;
+  }
+  ASSERT_EQ(run_in(dir, lists() + "--random-seed 9 in p1").status, 0);
+  ASSERT_EQ(run_in(dir, lists() + "--random-seed 9 in p2").status, 0);
+  ASSERT_EQ(run_in(dir, lists() + "--random-seed 10 in p3").status, 0);
+  EXPECT_EQ(read_text(dir + "/p1/wav.scp"), read_text(dir + "/p2/wav.scp"));
+  EXPECT_NE(read_text(dir + "/p1/wav.scp"), read_text(dir + "/p3/wav.scp"));
+}
+
+TEST_F(ReverberateData, KaldiIdsCopiesAndTables) {
+  CliRun r = run_in(dir, lists() + "--num-replications 2 --include-original-data true --noise-start zero in out");
+  ASSERT_EQ(r.status, 0) << r.log;
+  EXPECT_NE(r.log.find("rvb"), std::string::npos);  // the forced-prefix warning
+  tsrir::DataDir d = tsrir::read_data_dir(dir + "/out");
+  EXPECT_EQ(d.wav_scp.size(), 18u);
+  EXPECT_EQ(d.utt2spk.at("rvb0-spkA-u0"), "rvb0-spkA");
+  EXPECT_EQ(d.utt2spk.at("rvb2-spkB-u2"), "rvb2-spkB");
+  EXPECT_EQ(d.utt2uniq.at("rvb1-spkB-u1"), "spkB-u1");
+  EXPECT_EQ(d.text.at("rvb2-spkA-u0"), "HELLO WORLD 0");
+  tsrir::DataDir in = tsrir::read_data_dir(dir + "/in");
+  EXPECT_EQ(d.wav_scp.at("rvb0-spkA-u2"), in.wav_scp.at("spkA-u2"));  // copy 0 = the original
+  EXPECT_EQ(d.spk2utt().at("rvb1-spkA").size(), 3u);
+  EXPECT_NE(read_text(dir + "/out/spk2utt").find("rvb1-spkA rvb1-spkA-u0 rvb1-spkA-u1 rvb1-spkA-u2"), std::string::npos);
+  for (const auto& [id, pipe] : d.wav_scp) {
+    if (pipe.find("--additive-offsets=") != std::string::npos) {
+      EXPECT_NE(pipe.find("--additive-offsets=0 "), std::string::npos) << pipe;
+    }
+  }
+  EXPECT_TRUE(tsrir::validate_data_dir(dir + "/out", true).empty());
+}
+
+TEST_F(ReverberateData, SegmentsAndOptionalTables) {
+  // Two recordings split into segments; utt2uniq given.
+  write_text(dir + "/seg/wav.scp", "recA " + dir + "/audio/spkA-u2.wav\nrecB " + dir + "/audio/spkA-u1.wav\n");
+  write_text(dir + "/seg/segments", "s1-a recA 0.0 0.5\ns1-b recA 0.5 0.9\ns2-a recB 0.1 0.7\n");
+  write_text(dir + "/seg/utt2spk", "s1-a s1\ns1-b s1\ns2-a s2\n");
+  write_text(dir + "/seg/utt2uniq", "s1-a u1\ns1-b u2\ns2-a u3\n");
+  write_text(dir + "/seg/reco2file_and_channel", "recA recA 1\nrecB recB 1\n");
+  CliRun r = run_in(dir, lists() + "--prefix rev --write-wavs seg_wavs seg seg_out");
+  ASSERT_EQ(r.status, 0) << r.log;
+  tsrir::DataDir d = tsrir::read_data_dir(dir + "/seg_out");
+  EXPECT_EQ(d.segments.at("rev1-s1-b").recording_id, "rev1-recA");
+  EXPECT_DOUBLE_EQ(d.segments.at("rev1-s1-b").end_s, 0.9);
+  EXPECT_EQ(d.utt2uniq.at("rev1-s2-a"), "u3");
+  EXPECT_NE(read_text(dir + "/seg_out/reco2file_and_channel").find("rev1-recB rev1-recB 1"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir + "/seg_wavs/rev1-recA.wav"));
+  EXPECT_TRUE(tsrir::validate_data_dir(dir + "/seg_out").empty());
+}
+
+TEST_F(ReverberateData, FailuresLeaveNothingHalfWritten) {
+  // A previous good output must survive a failed run untouched.
+  write_text(dir + "/out/marker", "previous run\n");
+  write_text(dir + "/lists/empty_list", "");
+  CliRun empty = run_in(dir, "--rir-set-parameters lists/empty_list in out");
+  EXPECT_NE(empty.status, 0);
+  EXPECT_NE(empty.log.find("empty"), std::string::npos) << empty.log;
+
+  write_text(dir + "/lists/bad_noise", "--noise-id n --noise-type isotropic --room-linkage roomZ noise/short.wav\n");
+  CliRun room = run_in(dir, "--rir-set-parameters lists/rir_list_a --noise-set-parameters lists/bad_noise in out");
+  EXPECT_NE(room.status, 0);
+  EXPECT_NE(room.log.find("lists/bad_noise:1"), std::string::npos) << room.log;
+  EXPECT_NE(room.log.find("roomZ"), std::string::npos) << room.log;
+
+  // A failing input pipe while materialising.
+  fs::create_directories(dir + "/badin");
+  write_text(dir + "/badin/wav.scp", "u1 " + dir + "/audio/spkA-u0.wav\nu2 false |\n");
+  write_text(dir + "/badin/utt2spk", "u1 s\nu2 s\n");
+  CliRun pipe = run_in(dir, "--rir-set-parameters lists/rir_list_a --write-wavs wavs_bad badin out");
+  EXPECT_NE(pipe.status, 0);
+  EXPECT_NE(pipe.log.find("u2"), std::string::npos) << pipe.log;
+  EXPECT_FALSE(fs::exists(dir + "/wavs_bad"));
+
+  CliRun missing_rir = run_in(dir, "--rir-set-parameters lists/rir_list_missing in out");
+  EXPECT_NE(missing_rir.status, 0);
+  write_text(dir + "/lists/rir_list_gone", "--rir-id g --room-id g rirs/not_there.wav\n");
+  CliRun gone = run_in(dir, "--rir-set-parameters lists/rir_list_gone in out");
+  EXPECT_NE(gone.status, 0);
+  EXPECT_NE(gone.log.find("not_there"), std::string::npos) << gone.log;
+  CliRun nothing = run_in(dir, "in out");
+  EXPECT_NE(nothing.status, 0);
+
+  EXPECT_EQ(read_text(dir + "/out/marker"), "previous run\n");
+  EXPECT_FALSE(fs::exists(dir + "/out/wav.scp"));
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
+}
+
+TEST_F(ReverberateData, HelpAndBadOptions) {
+  CliRun help = run_in(dir, "--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_NE(help.log.find("e.g."), std::string::npos);
+  EXPECT_NE(run_in(dir, lists() + "--snrs 20:10:0 in o").status, 0);
+  EXPECT_NE(run_in(dir, lists() + "--noise-start middle in o").status, 0);
+  EXPECT_NE(run_in(dir, lists() + "--no-such-option 1 in o").status, 0);
+  EXPECT_NE(run_in(dir, lists() + "--speech-rvb-probability 1.5 in o").status, 0);
+  EXPECT_EQ(run_in(dir, lists() + "--shift-output false --normalize-output=false in o").status, 0);
+  EXPECT_NE(read_text(dir + "/o/wav.scp").find("--shift-output=false --normalize-output=false"), std::string::npos);
+}
+
+}  // namespace

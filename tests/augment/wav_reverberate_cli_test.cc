@@ -1,0 +1,228 @@
+// The wav-reverberate program against golden outputs made by the test's own float64 model of
+// Kaldi's documented semantics (reference_model.cc), and its command-line contract.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "io/audio_io.h"
+#include "reference_model.h"
+
+namespace {
+
+using reftest::Vec;
+const std::string kBin = std::string(TSRIR_BIN_DIR) + "/wav-reverberate";
+
+int run(const std::string& command) {
+  int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class WavReverberateCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::string(reftest::make_temp_dir("wavrvb"));
+    const double fs = 16000;
+    x_ = new Vec(reftest::quantise16(reftest::speech_like(16000, fs, 21)));
+    h_ = new Vec(reftest::synthetic_rir(4000, fs, 90, 0.5, 22));
+    n1_ = new Vec(reftest::quantise16(reftest::noise_signal(9000, 23)));
+    n2_ = new Vec(reftest::quantise16(reftest::noise_signal(30000, 24)));
+    reftest::write_wav(d("speech.wav"), {*x_}, fs, 16);
+    reftest::write_wav(d("rir16.wav"), {reftest::quantise16(*h_)}, fs, 16);
+    reftest::write_wav(d("rir_float.wav"), {*h_}, fs, 32, true);
+    reftest::write_wav(d("rir24.wav"), {*h_}, fs, 24);
+    reftest::write_wav(d("noise1.wav"), {*n1_}, fs, 16);
+    reftest::write_wav(d("noise2.wav"), {*n2_}, fs, 16);
+  }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*dir_);
+    delete dir_;
+    delete x_;
+    delete h_;
+    delete n1_;
+    delete n2_;
+  }
+  static std::string d(const std::string& name) { return *dir_ + "/" + name; }
+
+  // Runs the program, reads its output and compares with the golden model output, written next
+  // to it as golden_<tag>.wav (float) for inspection.
+  void expect_golden(const std::string& options, const Vec& rir, const std::vector<reftest::Additive>& additive,
+                     const reftest::Options& model, const std::string& tag, const std::string& rir_file = "") {
+    reftest::Result want = reftest::wav_reverberate(*x_, 16000, rir, additive, model);
+    reftest::write_wav(d("golden_" + tag + ".wav"), {want.output}, 16000, 32, true);
+    const std::string out = d("out_" + tag + ".wav");
+    std::string cmd = kBin + " --print-args=false " + options +
+                      (rir_file.empty() ? "" : " --impulse-response=" + rir_file) + " " + d("speech.wav") + " " + out;
+    ASSERT_EQ(run(cmd), 0) << cmd;
+    tsrir::AudioInfo info;
+    auto got = tsrir::read_audio_channels(out, &info);
+    ASSERT_EQ(info.format.find("PCM_16") != std::string::npos || info.format.find("16") != std::string::npos, true)
+        << info.format;
+    ASSERT_EQ(got[0].size(), want.output.size()) << tag;
+    // 16-bit output: rounding to the nearest step (0.5 LSB) plus float error; Kaldi's own
+    // binary differs from this model by 1-4 LSB (its packed DC/Nyquist bins); we allow 1 LSB.
+    double worst = 0;
+    for (size_t i = 0; i < got[0].size(); ++i) {
+      const double want_q = std::clamp(want.output[i], -1.0, 32767.0 / 32768.0);
+      worst = std::max(worst, std::abs(got[0][i] - want_q) * 32768.0);
+    }
+    EXPECT_LE(worst, 1.0) << tag << ": max error in LSB";
+  }
+
+  static std::string* dir_;
+  static Vec *x_, *h_, *n1_, *n2_;
+};
+std::string* WavReverberateCli::dir_ = nullptr;
+Vec *WavReverberateCli::x_, *WavReverberateCli::h_, *WavReverberateCli::n1_, *WavReverberateCli::n2_;
+
+TEST_F(WavReverberateCli, GoldenShiftNormalize) {
+  Vec h16 = reftest::quantise16(*h_);
+  reftest::Options o;
+  expect_golden("", h16, {}, o, "default", d("rir16.wav"));
+  o.shift_output = false;
+  expect_golden("--shift-output=false", h16, {}, o, "noshift", d("rir16.wav"));
+  o = {};
+  o.normalize_output = false;
+  expect_golden("--normalize-output=false", h16, {}, o, "nonorm", d("rir16.wav"));
+}
+
+TEST_F(WavReverberateCli, GoldenDurationAndVolume) {
+  Vec h16 = reftest::quantise16(*h_);
+  reftest::Options o;
+  o.duration_s = 0.5;
+  expect_golden("--duration=0.5", h16, {}, o, "dur_short", d("rir16.wav"));
+  o.duration_s = 2.25;
+  expect_golden("--duration=2.25", h16, {}, o, "dur_long", d("rir16.wav"));
+  o = {};
+  o.volume = 0.7;
+  expect_golden("--volume=0.7", h16, {}, o, "volume", d("rir16.wav"));
+}
+
+TEST_F(WavReverberateCli, GoldenMultipleAdditiveSignals) {
+  Vec h16 = reftest::quantise16(*h_);
+  reftest::Options o;
+  std::vector<reftest::Additive> add = {{*n1_, 5, 0.0, 0}, {*n2_, 10, 0.37, 0}};
+  expect_golden("--additive-signals=" + d("noise1.wav") + "," + d("noise2.wav") + " --snrs=5,10 --start-times=0,0.37",
+                h16, add, o, "additive", d("rir16.wav"));
+  // No RIR: SNR relative to the input's power (Kaldi: early energy = input power).
+  expect_golden("--additive-signals=" + d("noise2.wav") + " --snrs=0 --start-times=0.5", {}, {{*n2_, 0, 0.5, 0}}, o,
+                "noise_only");
+  // Kaldi's nested noise extension: "wav-reverberate --duration=T noise.wav - |" as an input.
+  Vec tiled(16000);
+  for (size_t i = 0; i < tiled.size(); ++i) tiled[i] = (*n1_)[i % n1_->size()];
+  // Normalisation of the tiled noise is a no-op up to the power ratio of whole periods; model it.
+  reftest::Options noise_model;
+  noise_model.duration_s = 1.0;
+  Vec nested = reftest::quantise16(reftest::wav_reverberate(*n1_, 16000, {}, {}, noise_model).output);
+  expect_golden("'--additive-signals=" + kBin + " --print-args=false --duration=1 " + d("noise1.wav") +
+                    " - |' --snrs=3 --start-times=0",
+                h16, {{nested, 3, 0, 0}}, o, "nested", d("rir16.wav"));
+}
+
+TEST_F(WavReverberateCli, GoldenExtensions) {
+  reftest::Options o;
+  o.loop = true;
+  expect_golden("--additive-signals=" + d("noise1.wav") +
+                    " --snrs=1.5 --start-times=0 --additive-offsets=0.2 --loop-additive-signals=true",
+                reftest::quantise16(*h_), {{*n1_, 1.5, 0, 0.2}}, o, "loop", d("rir16.wav"));
+  o.full_reference = true;
+  expect_golden("--additive-signals=" + d("noise1.wav") +
+                    " --snrs=1.5 --start-times=0 --additive-offsets=0.2 --loop-additive-signals --snr-reference=full",
+                reftest::quantise16(*h_), {{*n1_, 1.5, 0, 0.2}}, o, "loop_full", d("rir16.wav"));
+}
+
+// Kaldi reads only 16-bit PCM; TS-RIR writes float RIRs. Both float and 24-bit must work.
+TEST_F(WavReverberateCli, FloatAnd24BitRirs) {
+  reftest::Options o;
+  expect_golden("", *h_, {}, o, "rir_float", d("rir_float.wav"));
+  Vec h24(h_->size());
+  for (size_t i = 0; i < h24.size(); ++i) h24[i] = std::round((*h_)[i] * 8388608.0) / 8388608.0;
+  expect_golden("", h24, {}, o, "rir24", d("rir24.wav"));
+}
+
+TEST_F(WavReverberateCli, PipesAndStdio) {
+  const std::string out = d("piped.wav");
+  std::string cmd = "cat " + d("speech.wav") + " | " + kBin + " --print-args=false '--impulse-response=cat " +
+                    d("rir16.wav") + " |' - - > " + out;
+  ASSERT_EQ(run(cmd), 0);
+  ASSERT_EQ(run(kBin + " --print-args=false --impulse-response=" + d("rir16.wav") + " " + d("speech.wav") + " " +
+                d("direct.wav")),
+            0);
+  auto a = tsrir::read_audio(out), b = tsrir::read_audio(d("direct.wav"));
+  EXPECT_EQ(a.samples, b.samples);
+  ASSERT_EQ(run(kBin + " --print-args=false " + d("speech.wav") + " '| cat > " + d("outpipe.wav") + "'"), 0);
+  EXPECT_EQ(tsrir::read_audio(d("outpipe.wav")).samples.size(), x_->size());
+}
+
+TEST_F(WavReverberateCli, NoiseAtAnotherRateIsResampled) {
+  // The same noise at 8 kHz must give the output of the noise resampled to 16 kHz beforehand.
+  Vec n8 = reftest::quantise16(reftest::noise_signal(8000, 31));
+  reftest::write_wav(d("noise8k.wav"), {n8}, 8000, 16);
+  std::vector<float> n8f(n8.begin(), n8.end());
+  std::vector<float> n16 = tsrir::resample(n8f, 8000, 16000);
+  reftest::write_wav(d("noise8k_as16k.wav"), {Vec(n16.begin(), n16.end())}, 16000, 32, true);
+  for (const char* name : {"noise8k.wav", "noise8k_as16k.wav"}) {
+    ASSERT_EQ(run(kBin + " --print-args=false --additive-signals=" + d(name) + " --snrs=2 --start-times=0 " +
+                  d("speech.wav") + " " + d(std::string("o_") + name)),
+              0);
+  }
+  auto a = tsrir::read_audio(d("o_noise8k.wav")).samples, b = tsrir::read_audio(d("o_noise8k_as16k.wav")).samples;
+  ASSERT_EQ(a.size(), b.size());
+  double worst = 0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(double(a[i]) - b[i]) * 32768.0);
+  EXPECT_LE(worst, 1.0);
+}
+
+// wav.scp lines exactly as Kaldi's reverberate_data_dir.py writes them (kaldi-conventions.md),
+// run through bash with our bin directory first on PATH, as compute-mfcc-feats would run them.
+TEST_F(WavReverberateCli, KaldiScriptPipesRunUnchanged) {
+  const std::string path = "PATH=" + std::string(TSRIR_BIN_DIR) + ":$PATH ";
+  const std::string isotropic = "wav-reverberate --duration=1.0 " + d("noise1.wav") + " - |";
+  const std::string foreground = "wav-reverberate --impulse-response=\"" + d("rir16.wav") + "\"  " + d("noise2.wav") + " - |";
+  const std::string kaldi_line = "cat " + d("speech.wav") + " | wav-reverberate --shift-output=true --impulse-response=\"" +
+                                 d("rir16.wav") + "\" --additive-signals='" + isotropic + "," + foreground +
+                                 "' --start-times='0,0.31' --snrs='10.0,5.0' - - |";
+  const std::string out = d("kaldi_line.wav");
+  std::ofstream(d("kaldi_line.sh")) << kaldi_line.substr(0, kaldi_line.size() - 1) << "\n";  // drop the final |
+  ASSERT_EQ(run("cd " + *dir_ + " && " + path + "bash kaldi_line.sh > " + out + " 2>/dev/null"), 0);
+  // The same mixture from the model: both noises as wav-reverberate would make them.
+  reftest::Options dur;
+  dur.duration_s = 1.0;
+  Vec iso = reftest::quantise16(reftest::wav_reverberate(*n1_, 16000, {}, {}, dur).output);
+  Vec h16 = reftest::quantise16(*h_);
+  Vec fg = reftest::quantise16(reftest::wav_reverberate(*n2_, 16000, h16, {}, {}).output);
+  reftest::Result want = reftest::wav_reverberate(*x_, 16000, h16, {{iso, 10, 0, 0}, {fg, 5, 0.31, 0}}, {});
+  auto got = tsrir::read_audio(out).samples;
+  ASSERT_EQ(got.size(), want.output.size());
+  double worst = 0;
+  for (size_t i = 0; i < got.size(); ++i) worst = std::max(worst, std::abs(got[i] - want.output[i]) * 32768.0);
+  EXPECT_LE(worst, 1.0);
+}
+
+TEST_F(WavReverberateCli, CommandLineContract) {
+  const std::string q = " 2>/dev/null >/dev/null";
+  const std::string io = " " + d("speech.wav") + " " + d("c.wav");
+  EXPECT_EQ(run(kBin + " --help" + q), 0);
+  EXPECT_EQ(run(kBin + io + " --volume=2" + q), 1);                          // options after positionals
+  EXPECT_EQ(run(kBin + " " + d("speech.wav") + q), 1);                       // one positional
+  EXPECT_EQ(run(kBin + " --impulse-response " + d("rir16.wav") + io + q), 255);  // --name value
+  EXPECT_EQ(run(kBin + " --no-such-option=1" + io + q), 255);
+  EXPECT_EQ(run(kBin + " --additive-signals=" + d("noise1.wav") + io + q), 255);  // needs --snrs, --start-times
+  EXPECT_EQ(run(kBin + " --additive-signals=" + d("noise1.wav") + " --snrs=1,2 --start-times=0,0" + io + q), 255);
+  EXPECT_EQ(run(kBin + " --impulse-response=" + d("missing.wav") + io + q), 255);
+  EXPECT_EQ(run(kBin + " '--impulse-response=false |'" + io + q), 255);      // failing input pipe
+  EXPECT_FALSE(std::filesystem::exists(d("c.wav")));
+  EXPECT_EQ(run(kBin + " --print-args=false --Shift_Output=FALSE" + io + q), 0);
+  // --help prints the usage with an example and the reason for the program's name.
+  ASSERT_EQ(run(kBin + " --help > " + d("help.txt") + " 2>&1"), 0);
+  std::ifstream f(d("help.txt"));
+  std::string help((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(help.find("e.g."), std::string::npos);
+  EXPECT_NE(help.find("reverberate_data_dir.py"), std::string::npos);
+  EXPECT_NE(help.find("--additive-offsets"), std::string::npos);
+}
+
+}  // namespace
