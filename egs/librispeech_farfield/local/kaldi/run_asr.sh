@@ -1,0 +1,249 @@
+#!/usr/bin/env bash
+# Stage 8 of run.sh for one training set: the far-field LibriSpeech ASR benchmark of the paper
+# (RoyJames/kaldi egs/librispeech/s5/run_rvb.sh + local/chain/tuning/run_tdnn_1d_custom.sh; see
+# ../shared/docs/spec-digest.md sec. 5.3) run through Kaldi's own scripts in a Kaldi work
+# directory <work-dir> (steps/ and utils/ of egs/wsj/s5, local/ of egs/librispeech/s5):
+#   1 LMs (openslr 11) and lexicon, dict, lang_nosp, G.fst (tgsmall, tgmed), ConstArpa (tglarge, fglarge)
+#   2 the far-field train, dev and test dirs copied in, 13-dim MFCC + CMVN
+#   3 GMMs: mono (2k shortest), tri1 (5k, 2000/10000), tri2b LDA+MLLT (10k, 2500/15000),
+#     tri3b SAT (10k, 2500/15000), tri4b SAT (4200/40000)
+#   4 pronunciation and silence probabilities -> data/lang, its G.fst and ConstArpa LMs
+#   5 tri5b SAT on the whole training set (5000/100000), then Kaldi's data cleanup -> tri5b_cleaned
+#   6 speed perturbation, 40-dim hires MFCC (volume perturbed), PCA, 512-Gaussian diagonal UBM,
+#     i-vector extractor, online i-vectors (training: 2 utterances per speaker)
+#   7 chain TDNN-F (tdnn_1d: 16 tdnnf layers, 1536/160, 7000-leaf tree; 4 epochs; 2 -> 2 jobs)
+#   8 decoding of the dev and test sets: tgsmall, rescored with tgmed, tglarge and fglarge, and
+#     online decoding with the tgsmall graph
+# Deviations from the paper's recipe, both forced by training on one far-field set: tri4b is
+# trained on the first ~100 h (30k utterances; the paper: train-clean-100) and the cleanup uses
+# Kaldi's steps/cleanup/clean_and_segment_data.sh directly.
+set -euo pipefail
+
+stage=1
+nj=8
+decode_nj=8
+train=""            # far-field training data dir (from run.sh stage 7)
+dev=""              # far-field dev data dir
+test=""             # far-field test data dir
+lm_url=www.openslr.org/resources/11
+lm_dir=""           # shared LM download dir (default: <work-dir>/../lm)
+cleanup=true
+use_gpu=yes         # steps/nnet3/chain/train.py --use-gpu (yes | wait | no)
+num_jobs_initial=2  # the paper's run_tdnn_1d_custom.sh (upstream: 3)
+num_jobs_final=2    # (upstream: 16)
+help_message="Usage: $0 [--stage N] [--nj N] --train <dir> --dev <dir> --test <dir> <kaldi-work-dir>
+e.g.: $0 --train data/train_clean_460_rvb_gas --dev data/dev_clean_rvb_real --test data/test_clean_rvb_real exp/kaldi/gas"
+
+[ -n "${KALDI_ROOT:-}" ] || { echo "$0: KALDI_ROOT must point to a compiled Kaldi" >&2; exit 1; }
+. "$KALDI_ROOT/egs/wsj/s5/utils/parse_options.sh"
+[ $# -eq 1 ] || { echo "$help_message" >&2; exit 1; }
+for d in "$train" "$dev" "$test"; do
+  [ -n "$d" ] && [ -f "$d/wav.scp" ] || { echo "$0: --train, --dev and --test must be data dirs (got '$d')" >&2; exit 1; }
+done
+recipe=$(cd "$(dirname "$(readlink -f "$0")")/../.." && pwd)
+w=$1
+mkdir -p "$w"
+w=$(readlink -f "$w")
+lm_dir=$(readlink -m "${lm_dir:-$w/../lm}")
+train=$(readlink -f "$train"); dev=$(readlink -f "$dev"); test=$(readlink -f "$test")
+
+# ---- the Kaldi work directory ----
+cd "$w"
+ln -sfn "$KALDI_ROOT/egs/wsj/s5/steps" steps
+ln -sfn "$KALDI_ROOT/egs/wsj/s5/utils" utils
+ln -sfn "$KALDI_ROOT/egs/librispeech/s5/local" local
+mkdir -p conf data/local
+cp "$recipe"/conf/mfcc.conf "$recipe"/conf/mfcc_hires.conf "$recipe"/conf/online_cmvn.conf conf/
+cat >path.sh <<EOF
+export KALDI_ROOT=$KALDI_ROOT
+. $recipe/path.sh
+EOF
+cp "$recipe/cmd.sh" cmd.sh
+. ./cmd.sh
+. ./path.sh
+
+# Kaldi splits data per speaker: never more jobs than speakers.
+jobs_for() { local s; s=$(wc -l <"$1/spk2utt"); echo $(( s < $2 ? s : $2 )); }
+subset() {  # <src> <n> <dst> [--shortest]: at most n utterances
+  local n; n=$(wc -l <"$1/utt2spk")
+  if [ "$n" -le "$2" ]; then utils/copy_data_dir.sh "$1" "$3"; else utils/subset_data_dir.sh ${4:-} "$1" "$2" "$3"; fi
+}
+
+if [ "$stage" -le 1 ]; then
+  "$recipe/local/kaldi/download_lm.sh" "$lm_url" "$lm_dir"
+  ln -sfn "$lm_dir" data/local/lm
+  local/prepare_dict.sh --stage 3 --nj "$nj" --cmd "$train_cmd" data/local/lm data/local/lm data/local/dict_nosp
+  utils/prepare_lang.sh data/local/dict_nosp "<UNK>" data/local/lang_tmp_nosp data/lang_nosp
+  local/format_lms.sh --src-dir data/lang_nosp data/local/lm
+  utils/build_const_arpa_lm.sh data/local/lm/lm_tglarge.arpa.gz data/lang_nosp data/lang_nosp_test_tglarge
+  utils/build_const_arpa_lm.sh data/local/lm/lm_fglarge.arpa.gz data/lang_nosp data/lang_nosp_test_fglarge
+fi
+
+if [ "$stage" -le 2 ]; then
+  utils/copy_data_dir.sh "$train" data/train
+  utils/copy_data_dir.sh "$dev" data/dev_farfield
+  utils/copy_data_dir.sh "$test" data/test_farfield
+  for x in train dev_farfield test_farfield; do
+    steps/make_mfcc.sh --cmd "$train_cmd" --nj "$(jobs_for data/$x "$nj")" data/$x exp/make_mfcc/$x mfcc
+    steps/compute_cmvn_stats.sh data/$x exp/make_mfcc/$x mfcc
+    utils/fix_data_dir.sh data/$x
+  done
+fi
+
+if [ "$stage" -le 3 ]; then
+  subset data/train 2000 data/train_2kshort --shortest
+  subset data/train 5000 data/train_5k
+  subset data/train 10000 data/train_10k
+  subset data/train 30000 data/train_30k
+  steps/train_mono.sh --boost-silence 1.25 --nj "$(jobs_for data/train_2kshort "$nj")" --cmd "$train_cmd" \
+    data/train_2kshort data/lang_nosp exp/mono
+  steps/align_si.sh --boost-silence 1.25 --nj "$(jobs_for data/train_5k "$nj")" --cmd "$train_cmd" \
+    data/train_5k data/lang_nosp exp/mono exp/mono_ali_5k
+  steps/train_deltas.sh --boost-silence 1.25 --cmd "$train_cmd" 2000 10000 data/train_5k data/lang_nosp \
+    exp/mono_ali_5k exp/tri1
+  steps/align_si.sh --nj "$(jobs_for data/train_10k "$nj")" --cmd "$train_cmd" data/train_10k data/lang_nosp \
+    exp/tri1 exp/tri1_ali_10k
+  steps/train_lda_mllt.sh --cmd "$train_cmd" --splice-opts "--left-context=3 --right-context=3" 2500 15000 \
+    data/train_10k data/lang_nosp exp/tri1_ali_10k exp/tri2b
+  steps/align_si.sh --nj "$(jobs_for data/train_10k "$nj")" --cmd "$train_cmd" --use-graphs true \
+    data/train_10k data/lang_nosp exp/tri2b exp/tri2b_ali_10k
+  steps/train_sat.sh --cmd "$train_cmd" 2500 15000 data/train_10k data/lang_nosp exp/tri2b_ali_10k exp/tri3b
+  steps/align_fmllr.sh --nj "$(jobs_for data/train_30k "$nj")" --cmd "$train_cmd" data/train_30k data/lang_nosp \
+    exp/tri3b exp/tri3b_ali_30k
+  steps/train_sat.sh --cmd "$train_cmd" 4200 40000 data/train_30k data/lang_nosp exp/tri3b_ali_30k exp/tri4b
+fi
+
+if [ "$stage" -le 4 ]; then
+  steps/get_prons.sh --cmd "$train_cmd" data/train_30k data/lang_nosp exp/tri4b
+  utils/dict_dir_add_pronprobs.sh --max-normalize true data/local/dict_nosp exp/tri4b/pron_counts_nowb.txt \
+    exp/tri4b/sil_counts_nowb.txt exp/tri4b/pron_bigram_counts_nowb.txt data/local/dict
+  utils/prepare_lang.sh data/local/dict "<UNK>" data/local/lang_tmp data/lang
+  local/format_lms.sh --src-dir data/lang data/local/lm
+  utils/build_const_arpa_lm.sh data/local/lm/lm_tglarge.arpa.gz data/lang data/lang_test_tglarge
+  utils/build_const_arpa_lm.sh data/local/lm/lm_fglarge.arpa.gz data/lang data/lang_test_fglarge
+fi
+
+train_set=train; gmm=tri5b
+[ "$cleanup" = true ] && { train_set=train_cleaned; gmm=tri5b_cleaned; }
+if [ "$stage" -le 5 ]; then
+  steps/align_fmllr.sh --nj "$(jobs_for data/train "$nj")" --cmd "$train_cmd" data/train data/lang exp/tri4b exp/tri4b_ali
+  steps/train_sat.sh --cmd "$train_cmd" 5000 100000 data/train data/lang exp/tri4b_ali exp/tri5b
+  if [ "$cleanup" = true ]; then
+    steps/cleanup/clean_and_segment_data.sh --nj "$(jobs_for data/train "$nj")" --cmd "$train_cmd" \
+      --segmentation-opts "--min-segment-length 0.3 --min-new-segment-length 0.6" \
+      data/train data/lang exp/tri5b exp/tri5b_cleanup data/train_cleaned
+    steps/align_fmllr.sh --nj "$(jobs_for data/train_cleaned "$nj")" --cmd "$train_cmd" data/train_cleaned data/lang \
+      exp/tri5b exp/tri5b_ali_cleaned
+    steps/train_sat.sh --cmd "$train_cmd" 5000 100000 data/train_cleaned data/lang exp/tri5b_ali_cleaned exp/tri5b_cleaned
+  fi
+fi
+
+nnet3=exp/nnet3_cleaned
+sp=${train_set}_sp
+if [ "$stage" -le 6 ]; then
+  utils/data/perturb_data_dir_speed_3way.sh data/$train_set data/$sp
+  steps/make_mfcc.sh --cmd "$train_cmd" --nj "$(jobs_for data/$sp "$nj")" data/$sp exp/make_mfcc/$sp mfcc_perturbed
+  steps/compute_cmvn_stats.sh data/$sp exp/make_mfcc/$sp mfcc_perturbed
+  utils/fix_data_dir.sh data/$sp
+  steps/align_fmllr.sh --nj "$(jobs_for data/$sp "$nj")" --cmd "$train_cmd" data/$sp data/lang exp/$gmm exp/${gmm}_ali_$sp
+  utils/copy_data_dir.sh data/$sp data/${sp}_hires
+  utils/data/perturb_data_dir_volume.sh data/${sp}_hires
+  for x in ${sp} dev_farfield test_farfield; do
+    [ "$x" = "$sp" ] || utils/copy_data_dir.sh data/$x data/${x}_hires
+    steps/make_mfcc.sh --cmd "$train_cmd" --nj "$(jobs_for data/${x}_hires "$nj")" --mfcc-config conf/mfcc_hires.conf \
+      data/${x}_hires exp/make_hires/$x mfcc_hires
+    steps/compute_cmvn_stats.sh data/${x}_hires exp/make_hires/$x mfcc_hires
+    utils/fix_data_dir.sh data/${x}_hires
+  done
+  mkdir -p $nnet3
+  subset data/${sp}_hires 10000 data/${sp}_hires_10k
+  subset data/${sp}_hires 60000 data/${sp}_hires_60k
+  steps/online/nnet2/get_pca_transform.sh --cmd "$train_cmd" --splice-opts "--left-context=3 --right-context=3" \
+    --max-utts 10000 --subsample 2 data/${sp}_hires_10k $nnet3/pca_transform
+  steps/online/nnet2/train_diag_ubm.sh --cmd "$train_cmd" --nj "$(jobs_for data/${sp}_hires_10k "$nj")" \
+    --num-frames 700000 data/${sp}_hires_10k 512 $nnet3/pca_transform $nnet3/diag_ubm
+  steps/online/nnet2/train_ivector_extractor.sh --cmd "$train_cmd" --nj "$(jobs_for data/${sp}_hires_60k 10)" \
+    data/${sp}_hires_60k $nnet3/diag_ubm $nnet3/extractor
+  utils/data/modify_speaker_info.sh --utts-per-spk-max 2 data/${sp}_hires data/${sp}_hires_max2
+  steps/online/nnet2/extract_ivectors_online.sh --cmd "$train_cmd" --nj "$(jobs_for data/${sp}_hires_max2 "$nj")" \
+    data/${sp}_hires_max2 $nnet3/extractor $nnet3/ivectors_${sp}_hires
+  for x in dev_farfield test_farfield; do
+    steps/online/nnet2/extract_ivectors_online.sh --cmd "$train_cmd" --nj "$(jobs_for data/${x}_hires "$nj")" \
+      data/${x}_hires $nnet3/extractor $nnet3/ivectors_${x}_hires
+  done
+fi
+
+lang=data/lang_chain
+ali_dir=exp/${gmm}_ali_$sp
+lat_dir=exp/chain_cleaned/${gmm}_${sp}_lats
+tree_dir=exp/chain_cleaned/tree_sp
+dir=exp/chain_cleaned/tdnn_1d_sp
+if [ "$stage" -le 7 ]; then
+  rm -rf $lang
+  cp -r data/lang $lang
+  silphonelist=$(cat $lang/phones/silence.csl)
+  nonsilphonelist=$(cat $lang/phones/nonsilence.csl)
+  steps/nnet3/chain/gen_topo.py "$nonsilphonelist" "$silphonelist" >$lang/topo
+  steps/align_fmllr_lats.sh --nj "$(jobs_for data/$sp "$nj")" --cmd "$train_cmd" data/$sp data/lang exp/$gmm $lat_dir
+  rm -f $lat_dir/fsts.*.gz
+  steps/nnet3/chain/build_tree.sh --frame-subsampling-factor 3 --context-opts "--context-width=2 --central-position=1" \
+    --cmd "$train_cmd" 7000 data/$sp $lang $ali_dir $tree_dir
+  xent_regularize=0.1
+  num_targets=$(tree-info $tree_dir/tree | grep num-pdfs | awk '{print $2}')
+  learning_rate_factor=$(awk -v x=$xent_regularize 'BEGIN {print 0.5 / x}')
+  affine_opts="l2-regularize=0.008 dropout-proportion=0.0 dropout-per-dim=true dropout-per-dim-continuous=true"
+  tdnnf_opts="l2-regularize=0.008 dropout-proportion=0.0 bypass-scale=0.75"
+  linear_opts="l2-regularize=0.008 orthonormal-constraint=-1.0"
+  prefinal_opts="l2-regularize=0.008"
+  output_opts="l2-regularize=0.002"
+  mkdir -p $dir/configs
+  {
+    echo "input dim=100 name=ivector"
+    echo "input dim=40 name=input"
+    echo "fixed-affine-layer name=lda input=Append(-1,0,1,ReplaceIndex(ivector, t, 0)) affine-transform-file=$dir/configs/lda.mat"
+    echo "relu-batchnorm-dropout-layer name=tdnn1 $affine_opts dim=1536"
+    for i in $(seq 2 17); do
+      case $i in 2|3|4) s=1 ;; 5) s=0 ;; *) s=3 ;; esac
+      echo "tdnnf-layer name=tdnnf$i $tdnnf_opts dim=1536 bottleneck-dim=160 time-stride=$s"
+    done
+    echo "linear-component name=prefinal-l dim=256 $linear_opts"
+    echo "prefinal-layer name=prefinal-chain input=prefinal-l $prefinal_opts big-dim=1536 small-dim=256"
+    echo "output-layer name=output include-log-softmax=false dim=$num_targets $output_opts"
+    echo "prefinal-layer name=prefinal-xent input=prefinal-l $prefinal_opts big-dim=1536 small-dim=256"
+    echo "output-layer name=output-xent dim=$num_targets learning-rate-factor=$learning_rate_factor $output_opts"
+  } >$dir/configs/network.xconfig
+  steps/nnet3/xconfig_to_configs.py --xconfig-file $dir/configs/network.xconfig --config-dir $dir/configs/
+  steps/nnet3/chain/train.py --stage -10 --cmd "$decode_cmd" --use-gpu "$use_gpu" \
+    --feat.online-ivector-dir $nnet3/ivectors_${sp}_hires \
+    --feat.cmvn-opts "--norm-means=false --norm-vars=false" \
+    --chain.xent-regularize $xent_regularize --chain.leaky-hmm-coefficient 0.1 --chain.l2-regularize 0.0 \
+    --chain.apply-deriv-weights false --chain.lm-opts="--num-extra-lm-states=2000" \
+    --egs.stage -10 --egs.opts "--frames-overlap-per-eg 0 --constrained false" --egs.chunk-width 150,110,100 \
+    --trainer.dropout-schedule '0,0@0.20,0.5@0.50,0' \
+    --trainer.add-option="--optimization.memory-compression-level=2" \
+    --trainer.num-chunk-per-minibatch 64 --trainer.frames-per-iter 2500000 --trainer.num-epochs 4 \
+    --trainer.optimization.num-jobs-initial "$num_jobs_initial" --trainer.optimization.num-jobs-final "$num_jobs_final" \
+    --trainer.optimization.initial-effective-lrate 0.00015 --trainer.optimization.final-effective-lrate 0.000015 \
+    --trainer.max-param-change 2.0 --cleanup.remove-egs true \
+    --feat-dir data/${sp}_hires --tree-dir $tree_dir --lat-dir $lat_dir --dir $dir
+fi
+
+if [ "$stage" -le 8 ]; then
+  graph=$dir/graph_tgsmall
+  utils/mkgraph.sh --self-loop-scale 1.0 --remove-oov data/lang_test_tgsmall $dir $graph
+  steps/online/nnet3/prepare_online_decoding.sh --mfcc-config conf/mfcc_hires.conf $lang $nnet3/extractor $dir ${dir}_online
+  for x in test_farfield dev_farfield; do
+    steps/nnet3/decode.sh --acwt 1.0 --post-decode-acwt 10.0 --nj "$(jobs_for data/${x}_hires "$decode_nj")" \
+      --cmd "$decode_cmd" --online-ivector-dir $nnet3/ivectors_${x}_hires $graph data/${x}_hires $dir/decode_${x}_tgsmall
+    steps/lmrescore.sh --cmd "$decode_cmd" --self-loop-scale 1.0 data/lang_test_{tgsmall,tgmed} \
+      data/${x}_hires $dir/decode_${x}_{tgsmall,tgmed}
+    steps/lmrescore_const_arpa.sh --cmd "$decode_cmd" data/lang_test_{tgsmall,tglarge} \
+      data/${x}_hires $dir/decode_${x}_{tgsmall,tglarge}
+    steps/lmrescore_const_arpa.sh --cmd "$decode_cmd" data/lang_test_{tgsmall,fglarge} \
+      data/${x}_hires $dir/decode_${x}_{tgsmall,fglarge}
+    # Online decoding: one job per speaker, i-vectors estimated as the audio arrives.
+    steps/online/nnet3/decode.sh --acwt 1.0 --post-decode-acwt 10.0 --nj "$(wc -l <data/$x/spk2utt)" \
+      --cmd "$decode_cmd" $graph data/$x ${dir}_online/decode_${x}_tgsmall
+  done
+fi
+echo "$0: done: $w/$dir" >&2

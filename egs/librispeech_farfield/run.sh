@@ -1,0 +1,479 @@
+#!/usr/bin/env bash
+# The TS-RIR paper's experiment (Ratnarajah et al., ASRU 2021, sec. 4) as a Kaldi-style recipe:
+# real RIRs -> synthetic RIRs (GAS) -> sub-band EQ and TS-RIRGAN translation -> Table 1 (acoustic
+# parameters) -> far-field LibriSpeech data dirs -> Kaldi chain TDNN training and decoding (Table 2).
+#
+#   ./run.sh [options]              the full experiment (downloads LibriSpeech and BUT ReverbDB)
+#   ./run.sh --demo                 stages 0-7 on embedded data, < 10 minutes on 2 cores
+#   ./run.sh --demo --demo-size tiny   the reduced demo the test suite runs (~2 minutes)
+#
+# Stages (--stage N --stop-stage M; each skips work that is complete for the same settings, and
+# fails loudly, naming the file, when an input is missing):
+#   0  get data: LibriSpeech (openslr 12) and BUT ReverbDB, skipped when present
+#      (--demo: make the embedded corpus, local/make_demo_data.sh)
+#   1  Kaldi data dirs for the speech; real RIR and noise lists; the seeded 773/194/242
+#      train/dev/test RIR split (staircase and repeated RIRs dropped)
+#   2  GAS: one synthetic RIR per real RIR from its room/source/microphone metadata with random
+#      absorption (rir-room-list, rir-simulate via $train_cmd JOB=1:$nj)
+#   3  sub-band EQ fitted on the real training RIRs (rir-eq fit)
+#   4  TS-RIRGAN trained on real vs GAS training RIRs (ts-rirgan-train), or --gan-model given
+#   5  the RIR sets GAS, GAS+EQ, G(GAS), G(GAS+EQ), G(GAS)+EQ for the train and test splits
+#   6  Table 1: rir-metrics --reference=<real test RIRs> over the test-split sets -> RESULTS.md
+#   7  far-field data dirs (reverberate-data): one training set per RIR set, dev and test sets
+#      with real RIRs; real noise at a random offset, looped, SNR 1-2 dB; validated
+#   8  with KALDI_ROOT: chain TDNN training and decoding per training set through Kaldi's scripts
+#      (local/kaldi/run_asr.sh), WERs collected into the paper's Table 2 layout -> RESULTS.md
+# Set names read left to right as the operations applied: gas_eq = GAS+EQ, gas_gsr = G(GAS),
+# gas_eq_gsr = G(GAS+EQ), gas_gsr_eq = G(GAS)+EQ (the paper's best), real, clean (no RIR).
+set -euo pipefail
+cd "$(dirname "$(readlink -f "$0")")"
+
+# ---- configuration (every variable is an option: --name value, dashes for underscores) ----
+stage=0
+stop_stage=8
+demo=false            # run on embedded data (README's first command)
+demo_size=small       # small (README) | tiny (the test suite)
+nj=8                  # parallel jobs ($train_cmd JOB=1:$nj)
+num_threads=4         # threads per program
+seed=0                # every random choice: split, absorption, EQ draws, GAN, mixing
+corpus_dir=corpora    # downloads
+librispeech_url=https://www.openslr.org/resources/12
+librispeech_parts="train-clean-100 train-clean-360 dev-clean test-clean"
+librispeech_dir=""    # default $corpus_dir/LibriSpeech; an existing copy is used as is
+but_url=http://merlin.fit.vutbr.cz/ReverbDB/BUT_ReverbDB_rel_19_06_RIR-Only.tgz
+but_dir=""            # default $corpus_dir/BUT_ReverbDB; an existing copy is used as is
+but_skip_rooms=VUT_FIT_L227   # the staircase
+shared_data=../../../shared/data   # demo: real audio read in place when present
+data=data
+exp=exp
+results=RESULTS.md
+split_sizes=773:194:242
+absorption_range=0.1,0.6   # rir-room-list: uniform random absorption per RIR ...
+absorption_draw=surface    # ... drawn per surface (rir | surface | surface-band)
+sim_model=gas
+standin_model=gas     # demo without ../shared/data/rirs: model of the stand-in "real" RIRs
+eq_opts="--model=indep"
+gan_model=""          # a trained TS-RIRGAN (model dir or checkpoint.pt): skips stage 4's training
+gan_steps=20000
+gan_width=64
+gan_batch_size=64
+gan_device=cpu
+gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
+                      # spin-wait: 2 threads measured ~10x slower than 1 under load)
+metrics_definition=irstats
+snrs=1:2
+write_wavs=false      # far-field dirs: pipes in wav.scp (Kaldi's way) or 16-bit wavs
+rir_sets="gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"
+train_sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"   # stages 7-8
+kaldi_stage=0         # local/kaldi/run_asr.sh --stage
+lm_url=www.openslr.org/resources/11
+
+help_message="Usage: $0 [options]   (see the top of $0 for the stages)
+  --demo true|false, --demo-size small|tiny, --stage N, --stop-stage M, --nj N, --num-threads N,
+  --data DIR, --exp DIR, --results FILE, --corpus-dir DIR, --librispeech-dir DIR, --but-dir DIR,
+  --gan-model DIR, --gan-steps N, --gan-width W, --seed N, --snrs lo:hi, ... (every variable above)
+e.g.: $0 --demo
+      $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan"
+
+# `--demo` alone (the README's form) means --demo true; --demo also changes defaults, which
+# options given on the command line still override.
+args=()
+while [ $# -gt 0 ]; do
+  if [ "$1" = --demo ] && { [ $# -eq 1 ] || [ "${2#--}" != "$2" ]; }; then args+=(--demo true); shift
+  else args+=("$1"); shift; fi
+done
+set -- ${args[@]+"${args[@]}"}
+for ((i = 1; i < $#; i++)); do
+  j=$((i + 1))
+  [ "${!i}" = --demo ] && demo=${!j}
+  [ "${!i}" = --demo-size ] && demo_size=${!j}
+done
+if [ "$demo" = true ]; then
+  data=demo/data; exp=demo/exp; results=demo/RESULTS.md; stop_stage=7
+  nj=2; num_threads=2; gan_num_threads=1; write_wavs=true
+  case $demo_size in
+    # Steps and width bound the demo's GAN training on 2 cores (measured: width 8, batch 8 costs
+    # ~1.6 CPU-s per step, width 4, batch 4 ~0.3 s). The tiny demo only proves that the pipeline
+    # runs; the small one trains for ~3 minutes, far from the paper's model (RESULTS.md says so).
+    tiny) gan_steps=6; gan_width=4; gan_batch_size=4 ;;
+    small) gan_steps=120; gan_width=8; gan_batch_size=8 ;;
+  esac
+fi
+
+. ./cmd.sh
+. ./path.sh
+if [ -n "${KALDI_ROOT:-}" ]; then . "$KALDI_ROOT/egs/wsj/s5/utils/parse_options.sh"; else . ./local/parse_options.sh; fi
+[ $# -eq 0 ] || { echo "$0: unexpected arguments: $*" >&2; echo "$help_message" >&2; exit 1; }
+case $demo in true|false) ;; *) echo "$0: --demo must be true or false" >&2; exit 1 ;; esac
+case $demo_size in small|tiny) ;; *) echo "$0: --demo-size must be small or tiny, got '$demo_size'" >&2; exit 1 ;; esac
+
+# Absolute paths: lists and wav.scp pipes must work from any directory (Kaldi runs them from
+# its own recipe directory in stage 8).
+mkdir -p "$data" "$exp" "$(dirname "$results")"
+data=$(readlink -f "$data"); exp=$(readlink -f "$exp"); results=$(readlink -f "$(dirname "$results")")/$(basename "$results")
+corpus_dir=$(readlink -m "$corpus_dir")
+librispeech_dir=$(readlink -m "${librispeech_dir:-$corpus_dir/LibriSpeech}")
+but_dir=$(readlink -m "${but_dir:-$corpus_dir/BUT_ReverbDB}")
+shared_data=$(readlink -m "$shared_data")
+if [ "$demo" = true ]; then train_set=train_clean; else train_set=train_clean_460; fi
+rirs=$data/rirs
+
+# ---- helpers ----
+t_stage=$SECONDS
+log() { echo "run.sh: $*" >&2; }
+begin_stage() { t_stage=$SECONDS; log "stage $1: $2"; }
+end_stage() { log "stage $1 done ($(( SECONDS - t_stage )) s): $2"; }
+die() { echo "run.sh: ERROR: $*" >&2; exit 1; }
+# A step is done when its marker holds the same signature (the settings it ran with).
+is_done() { [ -f "$1" ] && [ "$(cat "$1")" = "$2" ]; }
+mark_done() { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; }
+require() { for f in "$@"; do [ -s "$f" ] || die "missing input $f (run the earlier stages first)"; done; }
+need_program() {
+  for p in "$@"; do
+    command -v "$p" >/dev/null || die "program $p not found on PATH (TSRIR_BIN=$TSRIR_BIN): build the toolkit first (utils/bootstrap.sh)"
+  done
+}
+run_logged() {  # [JOB=1:N] <log> <command...>: through $run_cmd (default $train_cmd), Kaldi's
+  local spec=() l                                   # argument order; on failure shows the log's tail
+  if [[ "$1" =~ ^[A-Za-z_][A-Za-z0-9_]*=[0-9]+(:[0-9]+)?$ ]]; then spec=("$1"); shift; fi
+  l=$1; shift
+  if ! ${run_cmd:-$train_cmd} ${spec[@]+"${spec[@]}"} "$l" "$@"; then
+    # The log of the first failed job (run.pl's footer records each job's exit code).
+    local shown; shown=$(grep -l '^# Ended (code [1-9]' ${l//JOB/*} 2>/dev/null | head -n 1 || true)
+    tail -n 20 "${shown:-${l//JOB/1}}" >&2 || true
+    die "failed: $* (log: $l)"
+  fi
+}
+count() { if [ -f "$1" ]; then grep -c . "$1" || true; else echo 0; fi; }
+set_label() {
+  case $1 in
+    real) echo real ;; gas) echo GAS ;; gas_eq) echo GAS+EQ ;; gas_gsr) echo "G(GAS)" ;;
+    gas_eq_gsr) echo "G(GAS+EQ)" ;; gas_gsr_eq) echo "G(GAS)+EQ" ;; clean) echo "clean" ;;
+    *) die "unknown RIR set name '$1'" ;;
+  esac
+}
+# RESULTS.md = the header and whichever of Table 1 (stage 6) and Table 2 (stage 8) exist, so that
+# re-running a stage replaces its table instead of appending.
+write_results() {
+  cat "$exp/results_header.md" $( [ -f "$exp/table1/section.md" ] && echo "$exp/table1/section.md") \
+    $( [ -f "$exp/table2/section.md" ] && echo "$exp/table2/section.md") >"$results.tmp"
+  mv "$results.tmp" "$results"
+}
+check_data_dir() { local/check_data_dir.sh "$1" || die "$1 is not a valid Kaldi data dir"; }
+
+log "$( [ "$demo" = true ] && echo "demo ($demo_size)" || echo "full experiment"): stages $stage..$stop_stage, data=$data exp=$exp"
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 0 ] && [ $stop_stage -ge 0 ]; then
+  if [ "$demo" = true ]; then
+    begin_stage 0 "embedded demo corpus (speech, RIRs, noise)"
+    sig="size=$demo_size shared=$shared_data:$(for p in speech rirs/r3vival noise; do [ -e "$shared_data/$p" ] && printf '%s,' "$p"; done) standin=$standin_model seed=$seed"
+    if is_done "$data/local/demo_corpus/.done" "$sig"; then
+      log "stage 0: demo corpus already made"
+    else
+      local/make_demo_data.sh --size "$demo_size" --shared-data "$shared_data" --standin-model "$standin_model" \
+        --seed "$seed" "$data/local/demo_corpus"
+      mark_done "$data/local/demo_corpus/.done" "$sig"
+    fi
+    while read -r line; do log "stage 0:   $line"; done <"$data/local/demo_corpus/SOURCES"
+    end_stage 0 "$(cat "$data"/local/demo_corpus/speech/*/wav.scp | wc -l) utterances, $(count "$data/local/demo_corpus/rirs/rir.scp") RIRs, $(count "$data/local/demo_corpus/noise/noise.scp") noises"
+  else
+    begin_stage 0 "LibriSpeech ($librispeech_parts) and BUT ReverbDB"
+    for part in $librispeech_parts; do
+      if [ -d "$librispeech_dir/$part" ]; then
+        log "stage 0: $librispeech_dir/$part present, not downloading"
+      else
+        [ "$(basename "$librispeech_dir")" = LibriSpeech ] ||
+          die "$librispeech_dir/$part is missing; downloads unpack into <dir>/LibriSpeech, so --librispeech-dir must end in LibriSpeech"
+        local/download_and_untar.sh "$(dirname "$librispeech_dir")" "$librispeech_url/$part.tar.gz"
+        [ -d "$librispeech_dir/$part" ] || die "$librispeech_url/$part.tar.gz did not unpack into $librispeech_dir/$part"
+      fi
+    done
+    if [ -d "$but_dir" ] && [ -n "$(find "$but_dir" -name env_meta.txt -print -quit)" ]; then
+      log "stage 0: BUT ReverbDB present in $but_dir, not downloading"
+    else
+      local/download_and_untar.sh "$but_dir" "$but_url"
+      [ -n "$(find "$but_dir" -name env_meta.txt -print -quit)" ] || die "$but_url unpacked into $but_dir holds no env_meta.txt"
+    fi
+    end_stage 0 "corpora in $librispeech_dir and $but_dir"
+  fi
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 1 ] && [ $stop_stage -ge 1 ]; then
+  begin_stage 1 "Kaldi data dirs, real RIR and noise lists, train/dev/test RIR split"
+  need_program validate-data-dir
+  if [ "$demo" = true ]; then
+    corpus=$data/local/demo_corpus
+    require "$corpus/.done"
+    for set in train_clean dev_clean test_clean; do
+      local/make_data_dir.sh "$corpus/speech/$set" "$data/$set"
+      check_data_dir "$data/$set"
+    done
+    rir_source=$corpus/rirs
+    noise_scp=$corpus/noise/noise.scp
+    source_sig=$(cat "$corpus/.done")
+  else
+    for part in $librispeech_parts; do
+      d=$data/$(echo "$part" | tr - _)
+      sig="$librispeech_dir/$part"
+      if is_done "$d/.done" "$sig"; then log "stage 1: $d already prepared"; continue; fi
+      local/prepare_librispeech.sh "$librispeech_dir/$part" "$d"
+      check_data_dir "$d"
+      mark_done "$d/.done" "$sig"
+    done
+    if [[ " $librispeech_parts " == *" train-clean-100 "* ]] && [[ " $librispeech_parts " == *" train-clean-360 "* ]]; then
+      local/combine_data_dirs.sh "$data/$train_set" "$data/train_clean_100" "$data/train_clean_360"
+      check_data_dir "$data/$train_set"
+    fi
+    sig="$but_dir skip=$but_skip_rooms"
+    if ! is_done "$data/local/but/.done" "$sig"; then
+      local/prepare_but_reverbdb.sh --skip-rooms "$but_skip_rooms" "$but_dir" "$data/local/but"
+      mark_done "$data/local/but/.done" "$sig"
+    fi
+    rir_source=$data/local/but
+    noise_scp=$data/local/but/noise.scp
+    source_sig=$(cat "$data/local/but/.done")
+  fi
+  require "$rir_source/meta.txt" "$rir_source/rir.scp" "$noise_scp"
+  # The real RIRs: all of them, and the seeded split into train/dev/test.
+  mkdir -p "$rirs/real_all"
+  cp "$rir_source/meta.txt" "$rirs/real_all/meta.txt"
+  awk '{print $1}' "$rir_source/meta.txt" | sort >"$rirs/real_all/ids"
+  local/subset_rir_set.sh --meta "$rir_source/meta.txt" "$rirs/real_all/ids" "$rir_source" "$rirs/real_all"
+  local/split_rirs.sh --seed "$seed" --sizes "$split_sizes" "$rirs/real_all/meta.txt" "$rirs/split"
+  # Each set's .done identifies its content (the audio behind unchanged paths can change, e.g. the
+  # demo's stand-ins), so that the later stages redo what depends on it.
+  for split in train dev test; do
+    local/subset_rir_set.sh "$rirs/split/$split.ids" "$rirs/real_all" "$rirs/real_$split"
+    mark_done "$rirs/real_$split/.done" "real: $source_sig $(cat "$rirs/split/split.txt") $(md5sum <"$rirs/real_$split/rir.scp")"
+  done
+  # Noise: background noise usable with any RIR (Kaldi noise_list format).
+  mkdir -p "$data/noise"
+  awk '{print "--noise-id " $1 " --noise-type point-source --bg-fg-type background " $2}' "$noise_scp" \
+    >"$data/noise/noise_list"
+  end_stage 1 "$(for s in $train_set dev_clean test_clean; do [ -f "$data/$s/utt2spk" ] && printf '%s: %s utts; ' "$s" "$(count "$data/$s/utt2spk")"; done)real RIRs $(cat "$rirs/split/split.txt"); $(count "$data/noise/noise_list") noises"
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 2 ] && [ $stop_stage -ge 2 ]; then
+  begin_stage 2 "GAS: one synthetic RIR per real RIR (rir-simulate --model=$sim_model, random absorption $absorption_range per $absorption_draw)"
+  need_program rir-room-list rir-simulate
+  require "$rirs/real_all/meta.txt" "$rirs/split/train.ids"
+  sig="model=$sim_model absorption=$absorption_range/$absorption_draw seed=$seed $(md5sum <"$rirs/real_all/meta.txt")"
+  out=$rirs/gas_all
+  if is_done "$out/.done" "$sig"; then
+    log "stage 2: GAS RIRs already simulated"
+  else
+    rm -rf "$out"; mkdir -p "$out/split$nj"
+    # The metadata table (rir-id room-id Lx Ly Lz sx sy sz mx my mz) -> one room-list line per RIR
+    # with random absorption, seeded by (seed, rir id) (TS-RIR sec. 3.3: "random surface
+    # absorption/reflection coefficients ... because we do not have room-material information").
+    { echo "rir-id room-id Lx Ly Lz sx sy sz mx my mz"; cat "$rirs/real_all/meta.txt"; } >"$out/setups.txt"
+    run_logged "$out/log/room_list.log" rir-room-list --format=table --seed="$seed" \
+      --absorption-range="$absorption_range" --absorption-draw="$absorption_draw" "$out/setups.txt" "$out/room_list"
+    n=$(grep -vc '^#' "$out/room_list" || true)
+    jobs=$(( n < nj ? n : nj ))
+    # Round-robin split; rir-simulate's randomness is keyed by (seed, rir id), so the split does
+    # not change any RIR.
+    for ((j = 1; j <= jobs; j++)); do
+      grep -v '^#' "$out/room_list" | awk -v j="$j" -v n="$jobs" '(NR - 1) % n == j - 1' >"$out/split$nj/room_list.$j"
+    done
+    run_logged JOB=1:$jobs "$out/log/simulate.JOB.log" rir-simulate --model="$sim_model" --seed="$seed" --fs=16000 \
+      --num-threads=1 "$out/split$nj/room_list.JOB" "$out/split$nj/JOB"
+    cat "$out"/split$nj/*/rir.scp | sort >"$out/rir.scp"
+    cat "$out"/split$nj/*/rir_list | sort -k2,2 >"$out/rir_list"
+    [ "$(count "$out/rir.scp")" -eq "$n" ] || die "rir-simulate wrote $(count "$out/rir.scp") of $n RIRs (logs: $out/log)"
+    mark_done "$out/.done" "$sig"
+  fi
+  for split in train dev test; do
+    local/subset_rir_set.sh "$rirs/split/$split.ids" "$out" "$rirs/gas_$split"
+    mark_done "$rirs/gas_$split/.done" "gas: $sig $(md5sum <"$rirs/gas_$split/rir.scp")"
+  done
+  end_stage 2 "$(count "$out/rir.scp") GAS RIRs in $out (logs: $out/log)"
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 3 ] && [ $stop_stage -ge 3 ]; then
+  begin_stage 3 "sub-band EQ fitted on the $(count "$rirs/real_train/rir.scp") real training RIRs (rir-eq fit $eq_opts)"
+  need_program rir-eq
+  require "$rirs/real_train/rir_list"
+  sig="$eq_opts $(cat "$rirs/real_train/.done" 2>/dev/null)"
+  if is_done "$exp/eq/.done" "$sig"; then
+    log "stage 3: EQ model already fitted"
+  else
+    # shellcheck disable=SC2086
+    run_logged "$exp/eq/log/fit.log" rir-eq fit $eq_opts --sample-rate=16000 --num-threads="$num_threads" \
+      "$rirs/real_train/rir_list" "$exp/eq/eq.model"
+    mark_done "$exp/eq/.done" "$sig"
+  fi
+  end_stage 3 "$exp/eq/eq.model (log: $exp/eq/log/fit.log)"
+fi
+
+# ---------------------------------------------------------------------------------------------
+gan_dir=${gan_model:-$exp/tsrirgan}
+if [ $stage -le 4 ] && [ $stop_stage -ge 4 ]; then
+  if [ -n "$gan_model" ]; then
+    begin_stage 4 "TS-RIRGAN: using the given model $gan_model"
+    [ -e "$gan_model" ] || die "--gan-model $gan_model does not exist"
+    end_stage 4 "no training"
+  else
+    begin_stage 4 "TS-RIRGAN training (steps $gan_steps, width $gan_width, batch $gan_batch_size, $gan_device)"
+    need_program ts-rirgan-train
+    require "$rirs/real_train/rir_list" "$rirs/gas_train/rir_list"
+    sig="steps=$gan_steps width=$gan_width batch=$gan_batch_size seed=$seed threads=${gan_num_threads:-$num_threads} $(cat "$rirs/real_train/.done" "$rirs/gas_train/.done" 2>/dev/null | md5sum)"
+    if is_done "$gan_dir/.done" "$sig"; then
+      log "stage 4: TS-RIRGAN already trained"
+    else
+      resume=()
+      # An interrupted run with the same settings continues from its checkpoint.
+      if [ -f "$gan_dir/checkpoint.pt" ] && [ -f "$gan_dir/.settings" ] && [ "$(cat "$gan_dir/.settings")" = "$sig" ]; then
+        resume=(--resume); log "stage 4: resuming from $gan_dir/checkpoint.pt"
+      else
+        rm -rf "$gan_dir"; mkdir -p "$gan_dir"; printf '%s\n' "$sig" >"$gan_dir/.settings"
+      fi
+      run_cmd=$gan_cmd run_logged "$exp/log/tsrirgan_train.log" ts-rirgan-train --real="$rirs/real_train/rir_list" \
+        --synthetic="$rirs/gas_train/rir_list" --steps="$gan_steps" --width="$gan_width" \
+        --batch-size="$gan_batch_size" --seed="$seed" --num-threads="${gan_num_threads:-$num_threads}" --device="$gan_device" \
+        ${resume[@]+"${resume[@]}"} "$gan_dir"
+      mark_done "$gan_dir/.done" "$sig"
+    fi
+    end_stage 4 "$gan_dir (log: $exp/log/tsrirgan_train.log; losses: $gan_dir/loss_log.csv)"
+  fi
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 5 ] && [ $stop_stage -ge 5 ]; then
+  begin_stage 5 "RIR sets GAS+EQ, G(GAS), G(GAS+EQ), G(GAS)+EQ for the train and test splits"
+  need_program rir-eq gas-to-real
+  require "$exp/eq/eq.model"
+  [ -e "$gan_dir" ] || die "missing TS-RIRGAN model $gan_dir (run stage 4 or give --gan-model)"
+  gan_sig=$( [ -f "$gan_dir/.done" ] && cat "$gan_dir/.done" || ls -l --time-style=+%s "$gan_dir" | md5sum)
+  # <set> <operation> <input set>: eq = rir-eq apply, gsr = gas-to-real (G_SR).
+  for split in train test; do
+    for spec in "gas_eq eq gas" "gas_gsr gsr gas" "gas_eq_gsr gsr gas_eq" "gas_gsr_eq eq gas_gsr"; do
+      read -r set op input <<<"$spec"
+      in=$rirs/${input}_$split; out=$rirs/${set}_$split
+      require "$in/rir_list"
+      # The input set's identity (its .done, which chains back to the real RIRs) and the model's.
+      if [ "$op" = eq ]; then model_sig=$(cat "$exp/eq/.done" 2>/dev/null); else model_sig=$gan_sig; fi
+      sig="$op seed=$seed $(cat "$in/.done" 2>/dev/null | md5sum) $model_sig"
+      if is_done "$out/.done" "$sig"; then continue; fi
+      if [ "$op" = eq ]; then
+        run_logged "$exp/log/make_${set}_$split.log" rir-eq apply --seed="$seed" --num-threads="$num_threads" \
+          "$exp/eq/eq.model" "$in/rir_list" "$out"
+      else
+        # 16-bit output: Kaldi's own wav-reverberate reads 16-bit PCM only.
+        run_logged "$exp/log/make_${set}_$split.log" gas-to-real --model="$gan_dir" --format=int16 \
+          --num-threads="${gan_num_threads:-$num_threads}" --device="$gan_device" "$in/rir_list" "$out"
+      fi
+      [ "$(count "$out/rir.scp")" -eq "$(count "$in/rir.scp")" ] || die "$out has $(count "$out/rir.scp") RIRs, $in has $(count "$in/rir.scp")"
+      mark_done "$out/.done" "$sig"
+      log "stage 5:   $(set_label "$set") ($split): $(count "$out/rir.scp") RIRs in $out"
+    done
+  done
+  end_stage 5 "$(for s in $rir_sets; do printf '%s ' "$(set_label "$s")"; done)for train and test in $rirs"
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 6 ] && [ $stop_stage -ge 6 ]; then
+  begin_stage 6 "Table 1: mean T60, DRR, EDT, C50 (CTE) of each test-split set vs the real test RIRs (rir-metrics --definition=$metrics_definition)"
+  need_program rir-metrics
+  t1=$exp/table1
+  rm -rf "$t1"; mkdir -p "$t1/sets"
+  require "$rirs/real_test/rir.scp"
+  cp "$rirs/real_test/rir.scp" "$t1/sets/real"
+  labels=()
+  for s in $rir_sets; do
+    require "$rirs/${s}_test/rir.scp"
+    l=$(set_label "$s"); cp "$rirs/${s}_test/rir.scp" "$t1/sets/$l"; labels+=("$l")
+  done
+  # Run from the sets directory so that the table's row names are the paper's set names.
+  (cd "$t1/sets" && rir-metrics --definition="$metrics_definition" --num-threads="$num_threads" \
+      --reference=real "${labels[@]}") >"$t1/table1.txt" 2>"$t1/rir-metrics.log" ||
+    { cat "$t1/rir-metrics.log" >&2; die "rir-metrics failed (log: $t1/rir-metrics.log)"; }
+  {
+    echo "# librispeech_farfield results"
+    echo
+    echo "$( [ "$demo" = true ] && echo "Demo run ($demo_size)" || echo "Full run"), $(date -u +%Y-%m-%d), seed $seed; real RIRs: $(cat "$rirs/split/split.txt")."
+    if [ "$demo" = true ]; then
+      echo
+      echo "Data of this demo run (stand-ins are marked STAND-IN):"
+      sed 's/^/- /' "$data/local/demo_corpus/SOURCES"
+      echo "- TS-RIRGAN: width $gan_width, $gan_steps steps (the paper's model: width 64, trained to convergence), so the G(...) rows come from a barely trained translator"
+    fi
+  } >"$exp/results_header.md"
+  {
+    echo
+    echo "## Table 1: acoustic parameters of the RIR sets (test split) vs the real test RIRs"
+    echo
+    echo '```'
+    cat "$t1/table1.txt"
+    echo '```'
+  } >"$t1/section.md"
+  write_results
+  cat "$t1/table1.txt"
+  end_stage 6 "Table 1 in $results"
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
+  begin_stage 7 "far-field data dirs (reverberate-data, SNR $snrs dB, noise at a random offset, looped)"
+  need_program reverberate-data wav-reverberate
+  require "$data/noise/noise_list"
+  made=()
+  farfield() {  # <in-dir> <rir-list> <out-dir>
+    local in=$1 rir_list=$2 out=$3 sig wavs=()
+    require "$in/wav.scp" "$rir_list"
+    sig="snrs=$snrs seed=$seed wavs=$write_wavs $(cat "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" 2>/dev/null | md5sum)"
+    local name; name=$(basename "$out")
+    if ! is_done "$exp/farfield/$name.done" "$sig"; then
+      [ "$write_wavs" = true ] && wavs=(--write-wavs "$data/wav/$name")
+      run_logged "$exp/log/reverberate_$name.log" reverberate-data \
+        --rir-set-parameters "1.0, $rir_list" --noise-set-parameters "$data/noise/noise_list" \
+        --snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
+      check_data_dir "$out"
+      # Pipes regenerate the audio: wavs of an earlier --write-wavs run would be stale.
+      [ "$write_wavs" = true ] || rm -rf "${data:?}/wav/$name"
+      mkdir -p "$exp/farfield"
+      mark_done "$exp/farfield/$name.done" "$sig"
+    fi
+    made+=("$(basename "$out") ($(count "$out/wav.scp") recordings)")
+  }
+  for s in $train_sets; do
+    [ "$s" = clean ] && continue
+    farfield "$data/$train_set" "$rirs/${s}_train/rir_list" "$data/${train_set}_rvb_$s"
+  done
+  farfield "$data/dev_clean" "$rirs/real_dev/rir_list" "$data/dev_clean_rvb_real"
+  farfield "$data/test_clean" "$rirs/real_test/rir_list" "$data/test_clean_rvb_real"
+  end_stage 7 "${made[*]} in $data, each valid (validate-data-dir$( [ -n "${KALDI_ROOT:-}" ] && echo " and Kaldi's validate_data_dir.sh --no-feats"))"
+fi
+
+# ---------------------------------------------------------------------------------------------
+if [ $stage -le 8 ] && [ $stop_stage -ge 8 ]; then
+  begin_stage 8 "Kaldi chain TDNN training and decoding per training set, Table 2"
+  if [ -z "${KALDI_ROOT:-}" ]; then
+    log "stage 8: KALDI_ROOT is not set: skipping Kaldi training (set it to a compiled Kaldi and rerun with --stage 8)"
+  else
+    for s in $train_sets; do
+      if [ "$s" = clean ]; then tr=$data/$train_set; else tr=$data/${train_set}_rvb_$s; fi
+      require "$tr/wav.scp" "$data/test_clean_rvb_real/wav.scp" "$data/dev_clean_rvb_real/wav.scp"
+      local/kaldi/run_asr.sh --stage "$kaldi_stage" --nj "$nj" --decode-nj "$nj" --lm-url "$lm_url" \
+        --lm-dir "$exp/kaldi/lm" --train "$tr" --dev "$data/dev_clean_rvb_real" --test "$data/test_clean_rvb_real" \
+        "$exp/kaldi/$s"
+    done
+    table2=$(local/collect_wer.sh --sets "$train_sets" --test-set test_farfield "$exp/kaldi")
+    mkdir -p "$exp/table2"
+    {
+      echo
+      echo "## Table 2: WER (%) on the real far-field test set (test-clean ⊛ real test RIRs + noise)"
+      echo
+      echo "$table2"
+    } >"$exp/table2/section.md"
+    [ -f "$exp/results_header.md" ] || echo "# librispeech_farfield results" >"$exp/results_header.md"
+    write_results
+    echo "$table2"
+  fi
+  end_stage 8 "results in $results"
+fi
+log "done: stages $stage..$stop_stage (total $SECONDS s)"
