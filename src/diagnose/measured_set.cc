@@ -1,0 +1,29 @@
+#include "diagnose/measured_set.h"
+
+#include <set>
+
+#include "io/rir_set.h"
+#include "sim/room_list.h"
+#include "util/error.h"
+
+namespace tsrir::diagnose {
+
+MeasuredSet load_measured_set(const std::string& room_list, const std::string& rir_scp) {
+  MeasuredSet set;
+  set.rooms = sim::read_room_list(room_list);
+  std::set<std::string> ids;
+  for (const sim::RoomSpec& r : set.rooms) ids.insert(r.rir_id);
+  for (const RirRef& ref : read_rir_refs(rir_scp)) {
+    if (!ids.count(ref.id)) {
+      throw Error(ref.where + ": measured RIR '" + ref.id + "' has no line in the room list " + room_list);
+    }
+    set.measured.push_back(load_rir(ref));
+  }
+  if (set.measured.size() < 6) {
+    throw Error(rir_scp + ": " + std::to_string(set.measured.size()) +
+                " RIRs; rir-diagnose decides over a set and needs at least 6");
+  }
+  return set;
+}
+
+}  // namespace tsrir::diagnose

@@ -1,0 +1,258 @@
+#include "diagnose/report_html.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "diagnose/set_statistics.h"
+#include "diagnose/svg_plot.h"
+#include "dsp/fft.h"
+#include "util/strings.h"
+
+namespace tsrir::diagnose {
+namespace {
+
+std::string num(double v, int digits = 3) { return std::isfinite(v) ? format_double(v, digits) : "n/a"; }
+
+// Spectrogram in dB: 12.5 ms Hann frames (hop = frame) over up to 0.8 s from the onset region,
+// 48 linear frequency rows up to Nyquist.
+std::vector<std::vector<double>> spectrogram_db(const Signal& s, double* peak_db) {
+  const double fs = s.sample_rate_hz;
+  const size_t frame = static_cast<size_t>(0.025 * fs), hop = static_cast<size_t>(0.8 / 48 * fs);
+  const size_t nfft = next_fast_fft_size(frame);
+  const size_t frames = std::min<size_t>(48, s.size() > frame ? (s.size() - frame) / hop + 1 : 0);
+  const int rows = 36;
+  std::vector<std::vector<double>> out(rows, std::vector<double>(frames, -300.0));
+  *peak_db = -300.0;
+  std::vector<float> buf(frame);
+  for (size_t t = 0; t < frames; ++t) {
+    for (size_t i = 0; i < frame; ++i) {
+      buf[i] = s.samples[t * hop + i] * static_cast<float>(0.5 - 0.5 * std::cos(2.0 * 3.14159265358979 * i / frame));
+    }
+    const std::vector<double> p = power_spectrum(buf, nfft);
+    for (int r = 0; r < rows; ++r) {
+      const size_t k0 = p.size() * r / rows, k1 = std::max(k0 + 1, p.size() * (r + 1) / rows);
+      double e = 0.0;
+      for (size_t k = k0; k < k1 && k < p.size(); ++k) e += p[k];
+      out[r][t] = 10.0 * std::log10(std::max(e / (k1 - k0), 1e-30));
+      *peak_db = std::max(*peak_db, out[r][t]);
+    }
+  }
+  return out;
+}
+
+std::vector<double> band_axis() {
+  return std::vector<double>(kOctaveCentersHz.begin(), kOctaveCentersHz.end());
+}
+
+std::vector<double> pct(const BandValues& log_ratio) {
+  std::vector<double> out;
+  for (double v : log_ratio) out.push_back(std::isfinite(v) ? 100.0 * std::expm1(v) : NAN);
+  return out;
+}
+
+void range_of(const std::vector<std::vector<double>>& series, double* lo, double* hi, double pad) {
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (const auto& s : series) {
+    for (double v : s) {
+      if (std::isfinite(v)) { *lo = std::min(*lo, v); *hi = std::max(*hi, v); }
+    }
+  }
+  if (!std::isfinite(*lo)) { *lo = -1; *hi = 1; }
+  *lo -= pad;
+  *hi += pad;
+}
+
+}  // namespace
+
+void write_report_html(const Diagnosis& d, const std::string& command_line, std::ostream& out) {
+  out << "<!DOCTYPE html><html><head><meta charset='utf-8'><title>rir-diagnose report</title><style>"
+         "body{font-family:sans-serif;margin:24px;max-width:1150px;color:#222}"
+         "table{border-collapse:collapse;margin:8px 0 18px}td,th{border:1px solid #ccc;padding:4px 8px;font-size:13px;"
+         "vertical-align:top}th{background:#f3f3f3}.yes{color:#b00;font-weight:bold}.no{color:#777}"
+         "code{background:#f5f5f5;padding:1px 4px;font-size:12px;word-break:break-all}.plots svg{margin:4px}"
+         "</style></head><body>\n";
+  out << "<h1>rir-diagnose report</h1>\n<p>" << d.num_rirs << " measured RIRs analysed at " << num(d.sample_rate_hz, 6)
+      << " Hz against the baseline model <code>" << html_escape(d.baseline_model) << "</code>; fit on " << d.fit_ids.size()
+      << " RIRs, evaluated on " << d.eval_ids.size() << " held-out RIRs; " << num(d.seconds, 3) << " s.</p>\n";
+  out << "<p>Command: <code>" << html_escape(command_line) << "</code></p>\n";
+
+  out << "<h2>Findings</h2>\n<p>Each decision is a test over the whole set of paired differences (measured minus "
+         "simulated), calibrated against the same statistic between two simulation seeds (null).</p>"
+         "<table><tr><th>effect</th><th>detected</th><th>confidence</th><th>statistic (null)</th><th>evidence</th>"
+         "<th>fitted parameters</th></tr>\n";
+  for (const Finding& f : d.findings) {
+    out << "<tr><td>" << f.effect << "</td><td class='" << (f.detected ? "yes'>yes" : "no'>no") << "</td><td>"
+        << num(f.confidence, 2) << "</td><td>" << num(f.statistic) << " (" << num(f.null_statistic) << ") "
+        << html_escape(f.statistic_unit) << "</td><td>" << html_escape(f.evidence) << "</td><td>";
+    int k = 0;
+    for (const auto& [name, v] : f.parameters) {
+      if (k++ == 24) { out << "..."; break; }
+      out << html_escape(name) << " = " << num(v, 4) << "<br>";
+    }
+    out << "</td></tr>\n";
+  }
+  out << "</table>\n";
+
+  out << "<h2>Gain on held-out RIRs</h2>\n<p>Mean absolute error over the eval ids (lower is better); gain = baseline "
+         "- extended with the standard error of the paired per-RIR differences. Extended model";
+  std::map<std::string, int> distinct;
+  for (const auto& [room, spec] : d.extended_model_by_room) distinct[spec]++;
+  if (distinct.size() == 1) {
+    out << ": <code>" << html_escape(distinct.begin()->first) << "</code>";
+  } else {
+    out << " per room:<br>";
+    for (const auto& [room, spec] : d.extended_model_by_room) {
+      out << html_escape(room) << ": <code>" << html_escape(spec) << "</code><br>";
+    }
+  }
+  out << "</p><table><tr><th>metric</th><th>baseline</th><th>extended</th><th>gain &plusmn; s.e.</th><th>n</th></tr>\n";
+  for (const MetricGain& g : d.gains) {
+    const bool better = g.gain > 2.0 * g.gain_se;
+    const bool worse = g.gain < -2.0 * g.gain_se;
+    out << "<tr><td>" << g.name << "</td><td>" << num(g.baseline) << " " << g.unit << "</td><td>" << num(g.extended) << " "
+        << g.unit << "</td><td style='color:" << (better ? "#070" : worse ? "#b00" : "#555") << "'>" << num(g.gain)
+        << " &plusmn; " << num(g.gain_se, 2) << "</td><td>" << g.n << "</td></tr>\n";
+  }
+  out << "</table>\n";
+
+  out << "<h2>Per-band departures (all RIRs)</h2><div class='plots'>\n";
+  {
+    PlotSpec p;
+    p.title = "Decay rate, measured vs simulated (T30)";
+    p.x_label = "octave band, Hz";
+    p.y_label = "rate change, % (+ = decays faster)";
+    p.log_x = true;
+    p.x_min = 44;
+    p.x_max = 11300;
+    Series s{"measured/simulated", "#1f77b4", band_axis(), pct(d.bands.mean_log_rate_ratio)};
+    s.points = true;
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      s.y_error.push_back(100.0 * std::exp(d.bands.mean_log_rate_ratio[b]) * d.bands.se_log_rate_ratio[b] * 2.0);
+    }
+    Series air{"air fit", "#2ca02c", band_axis(), pct(d.bands.air_fit_log_ratio)};
+    air.dashed = true;
+    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    range_of({s.y, {0.0, 10.0, -10.0}}, &p.y_min, &p.y_max, 5.0);
+    p.series = {zero, s, air};
+    out << svg_plot(p);
+  }
+  {
+    PlotSpec p;
+    p.title = "Band level (re broadband), measured - simulated";
+    p.x_label = "octave band, Hz";
+    p.y_label = "dB";
+    p.log_x = true;
+    p.x_min = 44;
+    p.x_max = 11300;
+    Series s{"mean +- 2 s.e.", "#1f77b4", band_axis(),
+             std::vector<double>(d.bands.mean_level_delta_db.begin(), d.bands.mean_level_delta_db.end())};
+    s.points = true;
+    for (double v : d.bands.se_level_delta_db) s.y_error.push_back(2.0 * v);
+    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    range_of({s.y, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
+    p.series = {zero, s};
+    out << svg_plot(p);
+  }
+  {
+    PlotSpec p;
+    p.title = "Spectral shape (mean over bands removed)";
+    p.x_label = "octave band, Hz";
+    p.y_label = "measured - simulated, dB";
+    p.log_x = true;
+    p.x_min = 44;
+    p.x_max = 11300;
+    std::vector<double> ds, ts;
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      ds.push_back(d.bands.direct_shape_db[b] == 0.0 ? NAN : d.bands.direct_shape_db[b]);
+      ts.push_back(d.bands.tail_shape_db[b] == 0.0 ? NAN : d.bands.tail_shape_db[b]);
+    }
+    Series a{"direct sound", "#d62728", band_axis(), ds};
+    a.points = true;
+    Series b{"tail", "#9467bd", band_axis(), ts};
+    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    range_of({ds, ts, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
+    p.series = {zero, a, b};
+    out << svg_plot(p);
+  }
+  {
+    PlotSpec p;
+    p.title = "Onset vs time of flight";
+    p.x_label = "stated distance / c, ms";
+    p.y_label = "detected onset, ms";
+    Series m{"measured", "#1f77b4", d.flight_ms, d.onset_meas_ms};
+    m.points = true;
+    Series s{"simulated", "#ff7f0e", d.flight_ms, d.onset_sim_ms};
+    s.points = true;
+    double lo, hi;
+    range_of({d.flight_ms}, &lo, &hi, 1.0);
+    p.x_min = std::max(0.0, lo);
+    p.x_max = hi;
+    range_of({d.onset_meas_ms, d.onset_sim_ms}, &p.y_min, &p.y_max, 1.0);
+    p.y_min = std::max(0.0, p.y_min);
+    p.series = {m, s};
+    out << svg_plot(p);
+  }
+  out << "</div>\n";
+
+  for (const ExampleCurves& ex : d.examples) {
+    out << "<h2>Held-out example <code>" << html_escape(ex.id) << "</code></h2><div class='plots'>\n";
+    double pm, pb, pe;
+    const auto sm = spectrogram_db(ex.measured, &pm), sb = spectrogram_db(ex.baseline, &pb), se = spectrogram_db(ex.extended, &pe);
+    const double dur = 0.8 / 48 * (sm.empty() ? 0 : sm[0].size());
+    out << svg_heatmap("measured", sm, pm - 70, pm, "time, s", dur, "Hz", ex.measured.sample_rate_hz / 2);
+    out << svg_heatmap("baseline simulation", sb, pb - 70, pb, "time, s", dur, "Hz", ex.baseline.sample_rate_hz / 2);
+    out << svg_heatmap("extended simulation", se, pe - 70, pe, "time, s", dur, "Hz", ex.extended.sample_rate_hz / 2);
+    out << "<br>";
+    {
+      PlotSpec p;
+      p.title = "Energy decay curve (from the onset)";
+      p.x_label = "time, s";
+      p.y_label = "dB";
+      std::vector<double> t;
+      for (size_t i = 0; i < ex.edc_meas_db.size(); ++i) t.push_back(0.005 * i);
+      p.x_min = 0;
+      p.x_max = t.empty() ? 1.0 : t.back();
+      p.y_min = -90;
+      p.y_max = 0;
+      Series base{"baseline", "#ff7f0e", t, ex.edc_base_db};
+      base.dashed = true;
+      p.series = {{"measured", "#1f77b4", t, ex.edc_meas_db}, base, {"extended", "#2ca02c", t, ex.edc_ext_db}};
+      out << svg_plot(p);
+    }
+    {
+      PlotSpec p;
+      p.title = "Low-frequency magnitude (red: predicted modes)";
+      p.x_label = "Hz";
+      p.y_label = "dB (3 Hz smoothing)";
+      std::vector<double> f;
+      for (size_t i = 0; i < ex.lf_meas_db.size(); ++i) f.push_back(static_cast<double>(i));
+      p.x_min = 20;
+      p.x_max = f.empty() ? 250 : f.back();
+      p.x_markers = ex.mode_freqs_hz;
+      // Each curve normalised to its own mean level in the range (calibration gains differ).
+      auto norm = [&](const std::vector<double>& v) {
+        std::vector<double> in_range;
+        for (size_t i = 20; i < v.size(); ++i) in_range.push_back(v[i]);
+        const double m = mean_of(in_range);
+        std::vector<double> o;
+        for (double x : v) o.push_back(x - m);
+        return o;
+      };
+      Series base{"baseline", "#ff7f0e", f, norm(ex.lf_base_db)};
+      base.dashed = true;
+      p.series = {{"measured", "#1f77b4", f, norm(ex.lf_meas_db)}, base, {"extended", "#2ca02c", f, norm(ex.lf_ext_db)}};
+      std::vector<double> all;
+      for (const Series& s : p.series) {
+        for (size_t i = 20; i < s.y.size(); ++i) all.push_back(s.y[i]);
+      }
+      range_of({all}, &p.y_min, &p.y_max, 2.0);
+      out << svg_plot(p);
+    }
+    out << "</div>\n";
+  }
+  out << "</body></html>\n";
+}
+
+}  // namespace tsrir::diagnose

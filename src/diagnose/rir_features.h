@@ -1,0 +1,74 @@
+// What rir-diagnose measures on every RIR, measured or simulated alike; each detection compares
+// these between a measured RIR and its simulation (paired), over the whole set.
+#pragma once
+#include <utility>
+#include <vector>
+
+#include "io/signal.h"
+#include "metrics/rir_metrics.h"
+#include "sim/room.h"
+
+namespace tsrir::diagnose {
+
+using sim::BandValues;
+
+struct FeatureOptions {
+  // Low-frequency analysis range: modes are looked for in [lf_min_hz, Schroeder frequency].
+  double lf_min_hz = 30.0;
+  double lf_max_hz = 250.0;      // upper end of the low-frequency spectral distance
+  double direct_pre_ms = 0.5;    // direct-sound window around the onset
+  double direct_post_ms = 2.5;
+  double tail_begin_ms = 20.0;   // reverberant-tail window for spectral shape, after the onset
+  double tail_end_ms = 300.0;
+  double echo_density_begin_ms = 5.0;   // early window of the echo-density statistic
+  double echo_density_end_ms = 45.0;
+};
+
+struct RirFeatures {
+  double onset_s = 0.0;          // first arrival (interpolated peak of the first strong sample)
+  double energy = 0.0;           // sum of squares
+  RirMetrics metrics;            // iso definition with Lundeby noise handling
+  BandValues decay_rate_per_s;   // 13.8155 / T30 (T20 where T30 is not measurable; else NaN)
+  BandValues early_decay_rate_per_s;  // 13.8155 / EDT (the first 10 dB: the band's own decay even
+                                      // where a slower neighbour's leakage dominates its T30)
+  BandValues t30_s;
+  BandValues level_db;           // metrics' band level re broadband energy
+  BandValues direct_band_db;     // energy of the direct-sound window per band, dB (NaN = unreliable)
+  BandValues tail_band_db;       // energy of the reverberant window per band, dB
+  BandValues late_power;         // per-sample power of the last 10 % per band (noise estimate)
+  BandValues late_decay_band_db;  // the same per band (NaN above Nyquist)
+  double late_decay_db = 0.0;    // decay between 70-80 % and 90-100 % of the file (median, 500..4k)
+  double tail_level_db = 0.0;    // energy of the last 10 % re the total energy, dB
+  double echo_density = 0.0;     // mean normalised echo density (1-4 kHz) in the early window
+  double mode_prominence_db = 0.0;  // spectrum at predicted modes minus between modes (window maxima)
+  std::vector<double> lf_spectrum_db;  // 1 Hz grid from 0 to lf_max_hz, 3 Hz power smoothing
+  double lf_energy_ratio = 0.0;  // energy below the Schroeder frequency / total energy
+};
+
+// `mode_freqs_hz`: the predicted mode frequencies of the stated room in the prominence range;
+// `schroeder_hz` bounds it.
+RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_freqs_hz, double schroeder_hz,
+                             double t60_low_s, const FeatureOptions& options = {});
+
+// Early echo density (1-4 kHz, echo_density_begin_ms..end_ms after the onset) of x convolved with
+// y's direct sound (2 ms around its onset, unit energy), and of y convolved with x's: both then
+// carry both measurement chains, so a transducer's colouration or ringing in one of them does not
+// read as a denser tail. Returns {density of x, density of y}.
+std::pair<double, double> cross_equalised_echo_density(const Signal& x, double onset_x_s, const Signal& y,
+                                                       double onset_y_s, const FeatureOptions& options = {});
+
+// Bands whose direct-sound level is resolvable at this rate by the short direct window.
+bool direct_band_reliable(int band, double sample_rate_hz);
+
+// RMS difference of two mean-removed LF spectra between lf_min_hz and their end, dB.
+double lf_spectral_distance_db(const std::vector<double>& a, const std::vector<double>& b, double lf_min_hz);
+
+// Normalised echo density profile (Abel & Huang): fraction of samples beyond one standard
+// deviation in a sliding window, divided by erfc(1/sqrt 2); evaluated at the given centres.
+double mean_echo_density(const std::vector<float>& x, double sample_rate_hz, size_t begin, size_t end);
+
+// Energy decay curve in dB (Schroeder) of the broadband RIR from the onset, one value per
+// `step_s`, for plotting.
+std::vector<double> edc_db_curve(const Signal& rir, double onset_s, double step_s, double length_s);
+
+}  // namespace tsrir::diagnose
