@@ -31,6 +31,8 @@ struct Case {
   std::set<std::string> hidden;
   uint64_t seed;
 };
+// ctest lists a case by its name rather than the struct's bytes.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 class HiddenEffectTest : public ::testing::TestWithParam<Case> {};
 
