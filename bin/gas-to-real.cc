@@ -1,0 +1,51 @@
+// gas-to-real: translates synthetic RIRs into real-like ones with a trained TS-RIRGAN.
+#include <string>
+
+#include "gan/ts_rirgan.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+int main(int argc, char** argv) {
+  return tsrir::run_program("gas-to-real", [&]() {
+    tsrir::GanTranslateOptions o;
+    std::string model, keep_length = "16000", format = "float";
+    tsrir::CommandLine cli(
+        "gas-to-real",
+        "Translates RIRs with a trained TS-RIRGAN generator (G_SR: synthetic -> real by default).\n"
+        "Each output keeps its input's id: <out-dir>/<id>.wav, rir.scp and rir_list (room ids kept).\n"
+        "Conventions: inputs are resampled to 16 kHz, cut to their first 16384 samples (warning) or\n"
+        "zero-padded, and peak-normalised before the generator, as in training. Outputs are 16 kHz.\n"
+        "  Length: --keep-length=16000 keeps the first 16000 of the 16384 generated samples (the\n"
+        "          original's generator.py); a number in [1, 16384] keeps that many; 'input' keeps the\n"
+        "          input's length at 16 kHz (at most 16384).\n"
+        "  Level:  by default the generator's output as is (tanh, peak near 1 like the peak-normalised\n"
+        "          training data), as the original; --restore-level scales each output by its input's\n"
+        "          peak |x|, restoring the input's level.\n"
+        "\n"
+        "Usage: gas-to-real [options] --model=<model-dir-or-checkpoint> <in-rir-scp> <out-dir>\n"
+        "Example:\n"
+        "  gas-to-real --model=exp/tsrirgan --batch-size=32 --num-threads=4 data/gas/rir.scp data/gsr_gas\n");
+    cli.option("model", &model, "Model dir (ts-rirgan-train output) or its checkpoint.pt");
+    cli.option("direction", &o.direction, "synthetic-to-real (G_SR) or real-to-synthetic (G_RS)");
+    cli.option("batch-size", &o.batch_size, "RIRs per generator call");
+    cli.option("keep-length", &keep_length, "Output length: samples (1..16384) or 'input'");
+    cli.flag("restore-level", &o.restore_level, "Scale each output by its input's peak |x|");
+    cli.option("format", &format, "Output sample format: int16 or float");
+    cli.option("device", &o.device, "cpu or cuda (needs a LibTorch with CUDA and a GPU)");
+    cli.option("num-threads", &o.num_threads, "CPU threads for LibTorch and reading");
+    const auto args = cli.parse(argc, argv, 2, 2);
+    if (model.empty()) throw tsrir::Error("--model is required");
+    o.model = model;
+    o.input_list = args[0];
+    o.out_dir = args[1];
+    o.format = tsrir::parse_sample_format(format);
+    o.keep_length = keep_length == "input" ? -1 : tsrir::parse_int(keep_length, "--keep-length");
+    const tsrir::GanTranslateResult r = tsrir::translate_rirs(o);
+    tsrir::log_info("translated " + std::to_string(r.num_rirs) + " RIRs into " + o.out_dir + " in " +
+                    tsrir::format_double(r.translate_s, 3) + " s (model load " +
+                    tsrir::format_double(r.model_load_s, 3) + " s, " +
+                    tsrir::format_double(r.num_rirs / r.translate_s, 3) + " RIRs/s)");
+    return 0;
+  });
+}

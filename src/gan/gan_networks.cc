@@ -1,0 +1,301 @@
+#include "gan/gan_networks.h"
+
+#include <algorithm>
+
+#include "io/atomic_output.h"
+#include "util/error.h"
+
+namespace tsrir {
+namespace gan {
+namespace {
+
+constexpr const char* kCheckpointTag = "tsrir-ts-rirgan-checkpoint-v1";
+
+void glorot_init(torch::Tensor& weight, torch::Tensor& bias) {
+  torch::NoGradGuard no_grad;
+  // Glorot's limit depends on fan_in + fan_out only, so torch's [out, in, k] and TF's [k, in, out]
+  // layouts give the same distribution.
+  torch::nn::init::xavier_uniform_(weight);
+  torch::nn::init::zeros_(bias);
+}
+
+std::string archive_key(const std::string& network, const std::string& parameter) {
+  std::string key = network + "__" + parameter;
+  std::replace(key.begin(), key.end(), '.', '_');
+  return key;
+}
+
+struct NamedNetwork {
+  std::string name;
+  torch::nn::Module* module;
+  TfRmsProp* optimizer;
+};
+
+std::vector<NamedNetwork> networks_of(CycleGan& model) {
+  return {{"g_real", model.g_real.get(), &model.optimizers[0]},
+          {"g_synthetic", model.g_synthetic.get(), &model.optimizers[1]},
+          {"d_real", model.d_real.get(), &model.optimizers[2]},
+          {"d_synthetic", model.d_synthetic.get(), &model.optimizers[3]}};
+}
+
+void open_archive(const std::string& path, torch::serialize::InputArchive& archive) {
+  try {
+    archive.load_from(path, torch::kCPU);
+  } catch (const std::exception& e) {
+    std::string why = e.what();
+    why = why.substr(0, why.find('\n'));
+    throw Error(path + ": not a readable TS-RIRGAN checkpoint (" + why + ")");
+  }
+  c10::IValue tag;
+  if (!archive.try_read("format", tag) || !tag.isString() || tag.toStringRef() != kCheckpointTag) {
+    throw Error(path + ": not a TS-RIRGAN checkpoint (no '" + std::string(kCheckpointTag) + "' tag)");
+  }
+}
+
+GanSettings archive_settings(torch::serialize::InputArchive& archive, const std::string& path) {
+  c10::IValue text;
+  if (!archive.try_read("settings", text) || !text.isString()) {
+    throw Error(path + ": checkpoint has no settings");
+  }
+  return parse_gan_settings(text.toStringRef(), path + " (settings)");
+}
+
+long long archive_step(torch::serialize::InputArchive& archive, const std::string& path) {
+  torch::Tensor step;
+  if (!archive.try_read("step", step) || step.numel() != 1) throw Error(path + ": checkpoint has no step");
+  return step.item<int64_t>();
+}
+
+// Copies a stored tensor into `target` after checking its shape (torch's own read() would
+// silently take any shape).
+void read_into(torch::serialize::InputArchive& archive, const std::string& key,
+               torch::Tensor& target, const std::string& path) {
+  torch::Tensor stored;
+  if (!archive.try_read(key, stored)) throw Error(path + ": checkpoint lacks tensor '" + key + "'");
+  if (stored.sizes() != target.sizes()) {
+    std::ostringstream os;
+    os << path << ": tensor '" << key << "' has shape " << stored.sizes() << ", the model expects "
+       << target.sizes();
+    throw Error(os.str());
+  }
+  torch::NoGradGuard no_grad;
+  target.copy_(stored);
+}
+
+}  // namespace
+
+SameConv1dImpl::SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride)
+    : kernel_length_(kernel_length), stride_(stride) {
+  conv_ = register_module("conv", torch::nn::Conv1d(torch::nn::Conv1dOptions(in_channels, out_channels, kernel_length)
+                                                        .stride(stride).bias(true)));
+  glorot_init(conv_->weight, conv_->bias);
+}
+
+torch::Tensor SameConv1dImpl::forward(const torch::Tensor& x) {
+  const int64_t length = x.size(2);
+  const int64_t out = (length + stride_ - 1) / stride_;
+  const int64_t pad_total = std::max<int64_t>((out - 1) * stride_ + kernel_length_ - length, 0);
+  const int64_t left = pad_total / 2;
+  return conv_->forward(torch::constant_pad_nd(x, {left, pad_total - left}, 0.0));
+}
+
+SameConvTranspose1dImpl::SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length,
+                                                 int stride)
+    : out_channels_(out_channels), kernel_length_(kernel_length), stride_(stride) {
+  weight = register_parameter("weight", torch::empty({in_channels, out_channels, kernel_length}));
+  bias = register_parameter("bias", torch::empty({out_channels}));
+  glorot_init(weight, bias);
+  // Output n = s*m + r takes x[m + o] * w[j] for j = (r + p) - s*o (0 <= j < k), o an offset.
+  const int s = stride, k = kernel_length, p = std::max(k - s, 0) / 2;
+  auto tap = [&](int r, int o) { return r + p - s * o; };
+  int o_min = 0, o_max = 0;
+  for (int r = 0; r < s; ++r) {
+    for (int o = -k; o <= k; ++o) {
+      const int j = tap(r, o);
+      if (j >= 0 && j < k) {
+        o_min = std::min(o_min, o);
+        o_max = std::max(o_max, o);
+      }
+    }
+  }
+  phase_taps_ = o_max - o_min + 1;
+  pad_left_ = -o_min;
+  pad_right_ = o_max;
+  std::vector<int64_t> index;
+  for (int r = 0; r < s; ++r) {
+    for (int u = 0; u < phase_taps_; ++u) {
+      const int j = tap(r, u + o_min);
+      index.push_back(j >= 0 && j < k ? j : k);
+    }
+  }
+  // A buffer, so module->to(device) moves it with the weights.
+  phase_index_ = register_buffer("phase_index", torch::tensor(index, torch::kInt64));
+}
+
+torch::Tensor SameConvTranspose1dImpl::forward(const torch::Tensor& x) {
+  const int64_t batch = x.size(0), length = x.size(2), in = weight.size(0);
+  const torch::Tensor w_ext = torch::constant_pad_nd(weight, {0, 1}, 0.0);  // tap k = 0
+  const torch::Tensor phase_kernels =
+      w_ext.index_select(2, phase_index_)
+          .view({in, out_channels_, stride_, phase_taps_})
+          .permute({2, 1, 0, 3})
+          .reshape({stride_ * out_channels_, in, phase_taps_});
+  const torch::Tensor phases = torch::conv1d(torch::constant_pad_nd(x, {pad_left_, pad_right_}, 0.0),
+                                             phase_kernels, bias.repeat({stride_}));
+  return phases.view({batch, stride_, out_channels_, length})
+      .permute({0, 2, 3, 1})
+      .reshape({batch, out_channels_, stride_ * length});
+}
+
+GeneratorImpl::GeneratorImpl(int width, int kernel_length) {
+  const int w = width;
+  const int down_channels[9][2] = {{1, w},         {w, 2 * w},     {2 * w, 4 * w},
+                                   {4 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w},
+                                   {8 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w}};
+  for (int i = 0; i < 9; ++i) {
+    down_.push_back(register_module("downconv_" + std::to_string(i),
+                                    SameConv1d(down_channels[i][0], down_channels[i][1], kernel_length,
+                                               i < 4 ? 4 : 1)));
+  }
+  // The original's comments say 256/128/64 on the way up; its code uses dim * 16, 8, 4.
+  const int up_channels[4][2] = {{8 * w, 16 * w}, {16 * w, 8 * w}, {8 * w, 4 * w}, {4 * w, 1}};
+  for (int i = 0; i < 4; ++i) {
+    up_.push_back(register_module("upconv_" + std::to_string(i + 1),
+                                  SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4)));
+  }
+}
+
+torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
+  for (auto& layer : down_) x = torch::relu(layer->forward(x));
+  for (size_t i = 0; i + 1 < up_.size(); ++i) x = torch::relu(up_[i]->forward(x));
+  return torch::tanh(up_.back()->forward(x));
+}
+
+DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length) {
+  int in = 1;
+  for (int i = 0; i < 5; ++i) {
+    const int out = width << i;
+    down_.push_back(register_module("downconv_" + std::to_string(i), SameConv1d(in, out, kernel_length, 4)));
+    in = out;
+  }
+  // 16384 / 4^5 = 16 positions of 16w channels.
+  output_ = register_module("output", torch::nn::Linear(16 * in, 1));
+  glorot_init(output_->weight, output_->bias);
+}
+
+torch::Tensor DiscriminatorImpl::forward(torch::Tensor x) {
+  for (auto& layer : down_) x = torch::leaky_relu(layer->forward(x), 0.2);
+  x = x.transpose(1, 2).reshape({x.size(0), -1});
+  return output_->forward(x).squeeze(1);
+}
+
+TfRmsProp::TfRmsProp(std::vector<torch::Tensor> params, double learning_rate, double decay, double epsilon)
+    : params_(std::move(params)), learning_rate_(learning_rate), decay_(decay), epsilon_(epsilon) {
+  for (const auto& p : params_) mean_square_.push_back(torch::ones_like(p).detach());
+}
+
+void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
+  torch::NoGradGuard no_grad;
+  for (size_t i = 0; i < params_.size(); ++i) {
+    const auto& g = grads.at(i);
+    if (!g.defined()) continue;
+    auto& ms = mean_square_[i];
+    ms.mul_(decay_).addcmul_(g, g, 1.0 - decay_);
+    params_[i].addcdiv_(g, (ms + epsilon_).sqrt_(), -learning_rate_);
+  }
+}
+
+CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
+  // Construction order fixes which random numbers each network's initialiser draws.
+  g_real = Generator(s.width, s.kernel_length);
+  g_synthetic = Generator(s.width, s.kernel_length);
+  d_real = Discriminator(s.width, s.kernel_length);
+  d_synthetic = Discriminator(s.width, s.kernel_length);
+  torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
+  for (auto* m : modules) {
+    m->to(device);
+    optimizers.emplace_back(m->parameters(), s.learning_rate);
+  }
+}
+
+void set_torch_threads(int num_threads) { torch::set_num_threads(std::max(1, num_threads)); }
+
+torch::Device parse_device(const std::string& name) {
+  if (name == "cpu") return torch::kCPU;
+  if (name == "cuda") {
+    if (!torch::cuda::is_available()) {
+      throw Error("--device=cuda: this LibTorch build has no CUDA support or sees no GPU");
+    }
+    return torch::kCUDA;
+  }
+  throw Error("--device must be cpu or cuda, got '" + name + "'");
+}
+
+long long count_parameters(torch::nn::Module& module) {
+  long long n = 0;
+  for (const auto& p : module.parameters()) n += p.numel();
+  return n;
+}
+
+void save_checkpoint(const std::string& path, const CycleGan& model, long long step) {
+  torch::serialize::OutputArchive archive;
+  archive.write("format", c10::IValue(std::string(kCheckpointTag)));
+  archive.write("settings", c10::IValue(gan_settings_text(model.settings)));
+  archive.write("step", torch::tensor(static_cast<int64_t>(step)));
+  // The networks are only read here; networks_of() serves both directions.
+  for (const auto& net : networks_of(const_cast<CycleGan&>(model))) {
+    for (const auto& item : net.module->named_parameters()) {
+      archive.write(archive_key(net.name, item.key()), item.value().detach().cpu());
+    }
+    const auto& ms = net.optimizer->mean_square();
+    for (size_t i = 0; i < ms.size(); ++i) {
+      archive.write(archive_key(net.name + "__rms", std::to_string(i)), ms[i].cpu());
+    }
+  }
+  const std::string temp = make_temp_path(path);
+  try {
+    archive.save_to(temp);
+  } catch (const std::exception& e) {
+    discard_temp_path(temp);
+    throw Error("cannot write checkpoint " + path + ": " + std::string(e.what()).substr(0, 200));
+  }
+  commit_temp_path(temp, path);
+}
+
+long long load_checkpoint(const std::string& path, CycleGan& model) {
+  torch::serialize::InputArchive archive;
+  open_archive(path, archive);
+  check_same_architecture(model.settings, archive_settings(archive, path), path);
+  for (const auto& net : networks_of(model)) {
+    for (auto& item : net.module->named_parameters()) {
+      read_into(archive, archive_key(net.name, item.key()), item.value(), path);
+    }
+    auto& ms = net.optimizer->mean_square();
+    for (size_t i = 0; i < ms.size(); ++i) {
+      read_into(archive, archive_key(net.name + "__rms", std::to_string(i)), ms[i], path);
+    }
+  }
+  return archive_step(archive, path);
+}
+
+GanSettings read_checkpoint_settings(const std::string& path) {
+  torch::serialize::InputArchive archive;
+  open_archive(path, archive);
+  return archive_settings(archive, path);
+}
+
+Generator load_generator(const std::string& path, const std::string& name, GanSettings* settings,
+                         long long* step) {
+  torch::serialize::InputArchive archive;
+  open_archive(path, archive);
+  *settings = archive_settings(archive, path);
+  Generator generator(settings->width, settings->kernel_length);
+  for (auto& item : generator->named_parameters()) {
+    read_into(archive, archive_key(name, item.key()), item.value(), path);
+  }
+  *step = archive_step(archive, path);
+  return generator;
+}
+
+}  // namespace gan
+}  // namespace tsrir

@@ -1,0 +1,118 @@
+// TS-RIRGAN networks, optimiser and checkpoints (LibTorch). Private to src/gan (and its unit
+// tests): nothing outside the GAN area may include torch.
+#pragma once
+#include <torch/torch.h>
+
+#include <string>
+#include <vector>
+
+#include "gan/gan_settings.h"
+
+namespace tsrir {
+namespace gan {
+
+// tf.layers.conv1d(padding='SAME'): out = ceil(L/s), pad_total = max((out-1)s + k - L, 0), the
+// smaller half on the left. Cross-correlation, bias, Glorot-uniform kernel, zero bias.
+class SameConv1dImpl : public torch::nn::Module {
+ public:
+  SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride);
+  torch::Tensor forward(const torch::Tensor& x);
+
+ private:
+  int kernel_length_, stride_;
+  torch::nn::Conv1d conv_{nullptr};
+};
+TORCH_MODULE(SameConv1d);
+
+// tf.layers.conv2d_transpose(padding='SAME') on [B, 1, L, C]: out = s*L, the adjoint of the SAME
+// conv, i.e. y[n] = sum over s*i + j - p = n of x[i] w[j] with p = floor((k - s)/2). The weight
+// is stored as torch's ConvTranspose1d weight [in, out, k]. It is computed as ONE stride-1 conv
+// with s*out channels (one per output phase, sub-kernels of ceil(k/s)+1 taps) followed by an
+// interleave: LibTorch's CPU transposed convolution (col2im) is 5-40x slower than its conv.
+class SameConvTranspose1dImpl : public torch::nn::Module {
+ public:
+  SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length, int stride);
+  torch::Tensor forward(const torch::Tensor& x);
+  torch::Tensor weight, bias;
+
+ private:
+  int out_channels_, kernel_length_, stride_;
+  int64_t phase_taps_ = 0, pad_left_ = 0, pad_right_ = 0;
+  torch::Tensor phase_index_;  // [stride * phase_taps] indices into k (k = a zero tap)
+};
+TORCH_MODULE(SameConvTranspose1d);
+
+// G_SR / G_RS: 4 strided convs (w, 2w, 4w, 8w), 5 stride-1 convs (8w), 3 transposed convs
+// (16w, 8w, 4w) and a transposed conv to 1 channel with tanh; ReLU elsewhere; no normalisation
+// and no skip connections. Input and output [B, 1, 16384].
+class GeneratorImpl : public torch::nn::Module {
+ public:
+  GeneratorImpl(int width, int kernel_length);
+  torch::Tensor forward(torch::Tensor x);
+
+ private:
+  std::vector<SameConv1d> down_;
+  std::vector<SameConvTranspose1d> up_;
+};
+TORCH_MODULE(Generator);
+
+// D_R / D_S (WaveGAN): 5 stride-4 convs (w .. 16w) with LeakyReLU 0.2, flatten in TF's
+// [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
+class DiscriminatorImpl : public torch::nn::Module {
+ public:
+  DiscriminatorImpl(int width, int kernel_length);
+  torch::Tensor forward(torch::Tensor x);
+
+ private:
+  std::vector<SameConv1d> down_;
+  torch::nn::Linear output_{nullptr};
+};
+TORCH_MODULE(Discriminator);
+
+// tf.train.RMSPropOptimizer (momentum 0): ms <- decay*ms + (1-decay)*g^2 with ms starting at
+// ONE (TF's slot initialiser, unlike torch's zeros), var <- var - lr*g/sqrt(ms + eps).
+class TfRmsProp {
+ public:
+  TfRmsProp(std::vector<torch::Tensor> params, double learning_rate, double decay = 0.9,
+            double epsilon = 1e-10);
+  // Applies one update with gradients ordered as params() (undefined ones are skipped).
+  void step(const std::vector<torch::Tensor>& grads);
+  std::vector<torch::Tensor>& mean_square() { return mean_square_; }
+  const std::vector<torch::Tensor>& params() const { return params_; }
+
+ private:
+  std::vector<torch::Tensor> params_, mean_square_;
+  double learning_rate_, decay_, epsilon_;
+};
+
+// The four networks and their optimisers.
+struct CycleGan {
+  CycleGan(const GanSettings& settings, torch::Device device);
+  GanSettings settings;
+  Generator g_real{nullptr};        // G_SR: synthetic -> real
+  Generator g_synthetic{nullptr};   // G_RS: real -> synthetic
+  Discriminator d_real{nullptr};
+  Discriminator d_synthetic{nullptr};
+  std::vector<TfRmsProp> optimizers;  // g_real, g_synthetic, d_real, d_synthetic
+};
+
+void set_torch_threads(int num_threads);
+// "cpu" or "cuda" (Error if CUDA is asked for and this LibTorch has none / sees no GPU).
+torch::Device parse_device(const std::string& name);
+long long count_parameters(torch::nn::Module& module);
+
+// Checkpoint: one file with the settings text, the step, all four networks and the optimiser
+// state; written to a temporary name and renamed. CPU tensors, so any device can load it.
+void save_checkpoint(const std::string& path, const CycleGan& model, long long step);
+// Restores everything into `model` (which must have been built from matching settings) and
+// returns the step. Errors name the file: unreadable/corrupt, other width, missing tensors.
+long long load_checkpoint(const std::string& path, CycleGan& model);
+// The settings stored in a checkpoint (Error if the file is not a TS-RIRGAN checkpoint).
+GanSettings read_checkpoint_settings(const std::string& path);
+// Builds one generator ("g_real" or "g_synthetic") from a checkpoint's settings and weights;
+// fills *settings and *step.
+Generator load_generator(const std::string& path, const std::string& name, GanSettings* settings,
+                         long long* step);
+
+}  // namespace gan
+}  // namespace tsrir

@@ -1,0 +1,104 @@
+#include "gan/gan_settings.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "io/atomic_output.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace tsrir {
+namespace {
+constexpr const char* kFormatTag = "tsrir-ts-rirgan-settings-v1";
+}
+
+std::string gan_settings_text(const GanSettings& s) {
+  std::ostringstream os;
+  os << "format " << kFormatTag << "\n"
+     << "width " << s.width << "\n"
+     << "kernel_length " << s.kernel_length << "\n"
+     << "slice_length " << s.slice_length << "\n"
+     << "sample_rate_hz " << format_double(s.sample_rate_hz, 10) << "\n"
+     << "batch_size " << s.batch_size << "\n"
+     << "seed " << s.seed << "\n"
+     << "learning_rate " << format_double(s.learning_rate, 10) << "\n"
+     << "disc_updates " << s.disc_updates << "\n"
+     << "real_list " << s.real_list << "\n"
+     << "synthetic_list " << s.synthetic_list << "\n";
+  return os.str();
+}
+
+GanSettings parse_gan_settings(const std::string& text, const std::string& where) {
+  GanSettings s;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  bool have_format = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    const size_t space = t.find_first_of(" \t");
+    const std::string key = t.substr(0, space);
+    const std::string value = space == std::string::npos ? "" : trim(t.substr(space));
+    const std::string ctx = located(where, line_no, key);
+    if (key == "format") {
+      if (value != kFormatTag) throw Error(located(where, line_no, "unknown settings format '" + value + "'"));
+      have_format = true;
+    } else if (key == "width") {
+      s.width = int(parse_int(value, ctx));
+    } else if (key == "kernel_length") {
+      s.kernel_length = int(parse_int(value, ctx));
+    } else if (key == "slice_length") {
+      s.slice_length = parse_int(value, ctx);
+    } else if (key == "sample_rate_hz") {
+      s.sample_rate_hz = parse_double(value, ctx);
+    } else if (key == "batch_size") {
+      s.batch_size = int(parse_int(value, ctx));
+    } else if (key == "seed") {
+      s.seed = uint64_t(parse_int(value, ctx));
+    } else if (key == "learning_rate") {
+      s.learning_rate = parse_double(value, ctx);
+    } else if (key == "disc_updates") {
+      s.disc_updates = int(parse_int(value, ctx));
+    } else if (key == "real_list") {
+      s.real_list = value;
+    } else if (key == "synthetic_list") {
+      s.synthetic_list = value;
+    } else {
+      throw Error(located(where, line_no, "unknown setting '" + key + "'"));
+    }
+  }
+  if (!have_format) throw Error(located(where, 0, "not a TS-RIRGAN settings file (no 'format' line)"));
+  if (s.width < 1 || s.kernel_length < 1 || s.slice_length != 16384 || s.sample_rate_hz != 16000.0) {
+    throw Error(located(where, 0, "unsupported model settings (width " + std::to_string(s.width) +
+                                      ", slice " + std::to_string(s.slice_length) + ")"));
+  }
+  return s;
+}
+
+GanSettings read_gan_settings_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot read model settings " + path);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return parse_gan_settings(os.str(), path);
+}
+
+void write_gan_settings_file(const std::string& path, const GanSettings& settings) {
+  AtomicTextFile out(path);
+  out.stream() << gan_settings_text(settings);
+  out.commit();
+}
+
+void check_same_architecture(const GanSettings& expected, const GanSettings& found,
+                             const std::string& what) {
+  if (expected.width != found.width || expected.kernel_length != found.kernel_length ||
+      expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz) {
+    throw Error(what + ": model width " + std::to_string(found.width) + " (kernel " +
+                std::to_string(found.kernel_length) + "), expected width " +
+                std::to_string(expected.width) + " (kernel " + std::to_string(expected.kernel_length) + ")");
+  }
+}
+
+}  // namespace tsrir

@@ -1,0 +1,33 @@
+// The model dir's settings.txt ("key value" lines): what a checkpoint needs to be rebuilt and
+// what a resumed run must agree with. The same text is stored inside each checkpoint.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace tsrir {
+
+struct GanSettings {
+  int width = 64;
+  int kernel_length = 25;
+  long long slice_length = 16384;
+  double sample_rate_hz = 16000.0;
+  int batch_size = 64;
+  uint64_t seed = 0;
+  double learning_rate = 3e-5;
+  int disc_updates = 2;
+  std::string real_list;
+  std::string synthetic_list;
+};
+
+std::string gan_settings_text(const GanSettings& settings);
+// `where` names the file for errors (unknown key, bad value, wrong format version).
+GanSettings parse_gan_settings(const std::string& text, const std::string& where);
+GanSettings read_gan_settings_file(const std::string& path);
+void write_gan_settings_file(const std::string& path, const GanSettings& settings);  // atomic
+
+// Errors with a clear message if a resumed run or a loaded checkpoint does not match the model
+// its settings describe (width, kernel, slice, rate); `what` names the two sides.
+void check_same_architecture(const GanSettings& expected, const GanSettings& found,
+                             const std::string& what);
+
+}  // namespace tsrir

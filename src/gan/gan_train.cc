@@ -1,0 +1,417 @@
+// The TS-RIRGAN training loop (spec-digest §3.4-3.5): per iteration, disc_updates x [D_R step,
+// D_S step], then a G_SR step and a G_RS step, each on a fresh pair of batches.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "gan/gan_input.h"
+#include "gan/gan_networks.h"
+#include "gan/gan_runtime.h"
+#include "gan/gan_settings.h"
+#include "gan/ts_rirgan.h"
+#include "io/rir_set.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/parallel.h"
+#include "util/rng.h"
+#include "util/strings.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir {
+namespace {
+
+using gan::CycleGan;
+
+// Loss weights of the original: LAMBDA = 10; D loss 0.5*LAMBDA*(...); G loss
+// adv + 25*(10*L1_cycle_R + 10*L1_cycle_S) + 35*(5*L1_identity).
+constexpr double kDiscriminatorWeight = 5.0;
+constexpr double kCycleWeight = 250.0;
+constexpr double kIdentityWeight = 175.0;
+
+const char* const kLogHeader =
+    "step,d_real,d_synthetic,g_real,g_synthetic,adv_real,adv_synthetic,cycle_l1_real,"
+    "cycle_l1_synthetic,identity_l1_real,identity_l1_synthetic,step_s";
+
+// All RIRs of one domain as a [N, 1, 16384] CPU tensor.
+torch::Tensor load_domain(const std::string& list, const std::string& name, int batch_size,
+                          int num_threads) {
+  const std::vector<RirRef> refs = read_rir_refs(list);
+  if (refs.empty()) throw Error(list + ": the " + name + " set is empty");
+  if (refs.size() < size_t(batch_size)) {
+    throw Error(list + ": the " + name + " set has " + std::to_string(refs.size()) +
+                " RIR(s); training needs at least --batch-size=" + std::to_string(batch_size));
+  }
+  std::vector<GanInput> inputs(refs.size());
+  AudioReadOptions read_options;
+  read_options.target_rate_hz = kGanSampleRateHz;
+  read_options.channel = -1;  // the original averages multichannel files
+  parallel_for(refs.size(), num_threads, [&](size_t i) {
+    inputs[i] = prepare_gan_input(load_rir(refs[i], read_options));
+  });
+  torch::Tensor rirs = torch::empty({int64_t(refs.size()), 1, int64_t(kGanSliceLength)});
+  size_t cropped = 0;
+  for (size_t i = 0; i < refs.size(); ++i) {
+    std::memcpy(rirs[i].data_ptr<float>(), inputs[i].samples.data(), kGanSliceLength * sizeof(float));
+    cropped += inputs[i].cropped;
+  }
+  if (cropped > 0) {
+    log_warning(list + ": " + std::to_string(cropped) + " of " + std::to_string(refs.size()) +
+                " " + name + " RIRs are longer than 16384 samples at 16 kHz; only their first " +
+                "16384 samples are used (as the original)");
+  }
+  log_info("loaded " + std::to_string(refs.size()) + " " + name + " RIRs from " + list);
+  return rirs;
+}
+
+// Batches drawn from per-epoch permutations that depend only on (seed, domain, epoch): draw d of
+// a run is the same whether the run was resumed or not.
+class BatchSampler {
+ public:
+  BatchSampler(uint64_t seed, std::string domain, torch::Tensor rirs)
+      : seed_(seed), domain_(std::move(domain)), rirs_(std::move(rirs)) {}
+
+  torch::Tensor batch(long long draw, int batch_size) {
+    const long long n = rirs_.size(0);
+    std::vector<int64_t> index(batch_size);
+    for (int b = 0; b < batch_size; ++b) {
+      const long long c = draw * batch_size + b;
+      index[b] = permutation(c / n)[c % n];
+    }
+    return rirs_.index_select(0, torch::tensor(index, torch::kInt64));
+  }
+
+ private:
+  const std::vector<int64_t>& permutation(long long epoch) {
+    auto it = cache_.find(epoch);
+    if (it != cache_.end()) return it->second;
+    if (cache_.size() > 4) cache_.erase(cache_.begin());
+    std::vector<int64_t> p(rirs_.size(0));
+    for (size_t i = 0; i < p.size(); ++i) p[i] = int64_t(i);
+    Rng rng = Rng::for_item(seed_, domain_ + "/epoch/" + std::to_string(epoch));
+    for (size_t i = p.size(); i > 1; --i) std::swap(p[i - 1], p[rng.below(i)]);
+    return cache_.emplace(epoch, std::move(p)).first->second;
+  }
+
+  uint64_t seed_;
+  std::string domain_;
+  torch::Tensor rirs_;
+  std::map<long long, std::vector<int64_t>> cache_;
+};
+
+struct StepLosses {
+  double d_real = 0, d_synthetic = 0, g_real = 0, g_synthetic = 0, adv_real = 0, adv_synthetic = 0;
+  double cycle_real = 0, cycle_synthetic = 0, identity_real = 0, identity_synthetic = 0;
+};
+
+class NonFiniteLoss : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+double checked(const torch::Tensor& loss, const char* name) {
+  const double v = loss.item<double>();
+  if (!std::isfinite(v)) {
+    throw NonFiniteLoss(std::string(name) + " loss is not finite (" + (std::isnan(v) ? "NaN" : "Inf") + ")");
+  }
+  return v;
+}
+
+void apply(gan::TfRmsProp& optimizer, const torch::Tensor& loss) {
+  optimizer.step(torch::autograd::grad({loss}, optimizer.params()));
+}
+
+class Trainer {
+ public:
+  Trainer(CycleGan& model, BatchSampler& real, BatchSampler& synthetic, torch::Device device)
+      : m_(model), real_(real), synthetic_(synthetic), device_(device) {}
+
+  StepLosses step(long long step_number) {
+    const int draws = 2 * m_.settings.disc_updates + 2;
+    long long draw = (step_number - 1) * draws;
+    StepLosses L;
+    for (int u = 0; u < m_.settings.disc_updates; ++u) {
+      L.d_real = discriminator_step(m_.d_real, m_.g_real, m_.optimizers[2], draw++, true, "D_real");
+      L.d_synthetic =
+          discriminator_step(m_.d_synthetic, m_.g_synthetic, m_.optimizers[3], draw++, false, "D_synthetic");
+    }
+    generator_step(draw++, true, &L);
+    generator_step(draw++, false, &L);
+    return L;
+  }
+
+ private:
+  std::pair<torch::Tensor, torch::Tensor> batches(long long draw) {
+    const int b = m_.settings.batch_size;
+    return {real_.batch(draw, b).to(device_), synthetic_.batch(draw, b).to(device_)};
+  }
+
+  // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
+  double discriminator_step(gan::Discriminator& d, gan::Generator& g, gan::TfRmsProp& optimizer,
+                            long long draw, bool real_side, const char* name) {
+    auto [x_real, x_synthetic] = batches(draw);
+    const torch::Tensor& own = real_side ? x_real : x_synthetic;
+    const torch::Tensor& other = real_side ? x_synthetic : x_real;
+    torch::Tensor fake;
+    {
+      torch::NoGradGuard no_grad;
+      fake = g->forward(other);
+    }
+    torch::Tensor loss =
+        kDiscriminatorWeight * ((d->forward(own) - 1.0).pow(2).mean() + d->forward(fake).pow(2).mean());
+    const double value = checked(loss, name);
+    apply(optimizer, loss);
+    return value;
+  }
+
+  // G_SR step (real_side) or G_RS step: adversarial + both cycle terms + own identity term.
+  // Gradients reach only the stepped generator's weights; the other generator is differentiated
+  // through (cycle) but not updated, as tf minimize(var_list=...) does.
+  void generator_step(long long draw, bool real_side, StepLosses* L) {
+    auto [x_real, x_synthetic] = batches(draw);
+    gan::Generator& g = real_side ? m_.g_real : m_.g_synthetic;
+    gan::Generator& f = real_side ? m_.g_synthetic : m_.g_real;
+    gan::Discriminator& d = real_side ? m_.d_real : m_.d_synthetic;
+    const torch::Tensor& source = real_side ? x_synthetic : x_real;   // translated by g
+    const torch::Tensor& target = real_side ? x_real : x_synthetic;   // g's own domain
+    torch::Tensor back;
+    {
+      torch::NoGradGuard no_grad;
+      back = f->forward(target);  // for target -> f -> g, where only g is differentiated
+    }
+    const int64_t b = source.size(0);
+    // One batched pass of g over [source; f(target); target].
+    const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
+    const torch::Tensor translated = out.narrow(0, 0, b);
+    const torch::Tensor target_cycled = out.narrow(0, b, b);
+    const torch::Tensor target_same = out.narrow(0, 2 * b, b);
+    const torch::Tensor adv = (d->forward(translated) - 1.0).pow(2).mean();
+    const torch::Tensor cycle_source = (source - f->forward(translated)).abs().mean();
+    const torch::Tensor cycle_target = (target - target_cycled).abs().mean();
+    const torch::Tensor identity = (target - target_same).abs().mean();
+    const torch::Tensor loss = adv + kCycleWeight * (cycle_source + cycle_target) + kIdentityWeight * identity;
+    const double total = checked(loss, real_side ? "G_real" : "G_synthetic");
+    apply(m_.optimizers[real_side ? 0 : 1], loss);
+    if (real_side) {
+      L->g_real = total;
+      L->adv_real = adv.item<double>();
+      L->cycle_real = cycle_target.item<double>();
+      L->cycle_synthetic = cycle_source.item<double>();
+      L->identity_real = identity.item<double>();
+    } else {
+      L->g_synthetic = total;
+      L->adv_synthetic = adv.item<double>();
+      L->identity_synthetic = identity.item<double>();
+    }
+  }
+
+  CycleGan& m_;
+  BatchSampler& real_;
+  BatchSampler& synthetic_;
+  torch::Device device_;
+};
+
+bool parameters_finite(CycleGan& model) {
+  torch::NoGradGuard no_grad;
+  torch::nn::Module* modules[4] = {model.g_real.get(), model.g_synthetic.get(), model.d_real.get(),
+                                   model.d_synthetic.get()};
+  for (auto* m : modules) {
+    for (const auto& p : m->parameters()) {
+      if (!torch::isfinite(p).all().item<bool>()) return false;
+    }
+  }
+  return true;
+}
+
+// Keeps the header and the rows up to `last_step` (rows after the resumed checkpoint were lost
+// with the interrupted run and are run again).
+void truncate_loss_log(const std::string& path, long long last_step) {
+  std::vector<std::string> kept;
+  std::ifstream in(path);
+  std::string line;
+  bool first = true;
+  while (std::getline(in, line)) {
+    if (first) {
+      first = false;
+      continue;
+    }
+    const size_t comma = line.find(',');
+    if (comma == std::string::npos) continue;
+    const long long step = std::atoll(line.substr(0, comma).c_str());
+    if (step >= 1 && step <= last_step) kept.push_back(line);
+  }
+  AtomicTextFile out(path);
+  out.stream() << kLogHeader << "\n";
+  for (const auto& row : kept) out.stream() << row << "\n";
+  out.commit();
+}
+
+std::string format_row(long long step, const StepLosses& L, double seconds) {
+  std::ostringstream os;
+  os.precision(9);
+  os << step << ',' << L.d_real << ',' << L.d_synthetic << ',' << L.g_real << ',' << L.g_synthetic << ','
+     << L.adv_real << ',' << L.adv_synthetic << ',' << L.cycle_real << ',' << L.cycle_synthetic << ','
+     << L.identity_real << ',' << L.identity_synthetic << ',';
+  os.precision(4);
+  os << seconds;
+  return os.str();
+}
+
+void validate(const GanTrainOptions& o) {
+  if (o.real_list.empty() || o.synthetic_list.empty()) throw Error("--real and --synthetic are required");
+  if (o.steps < 1) throw Error("--steps must be >= 1");
+  if (o.width < 1 || o.width > 1024) throw Error("--width must be in [1, 1024]");
+  if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
+  if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
+  if (o.checkpoint_every < 1) throw Error("--checkpoint-every must be >= 1");
+  if (o.disc_updates < 1) throw Error("--disc-updates must be >= 1");
+  if (!(o.learning_rate > 0) || !std::isfinite(o.learning_rate)) throw Error("--learning-rate must be > 0");
+}
+
+void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
+  check_same_architecture(saved, asked, where + " (give the --width it was trained with)");
+  std::string diff;
+  if (saved.batch_size != asked.batch_size) diff += " --batch-size=" + std::to_string(saved.batch_size);
+  if (saved.seed != asked.seed) diff += " --seed=" + std::to_string(saved.seed);
+  if (saved.disc_updates != asked.disc_updates) diff += " --disc-updates=" + std::to_string(saved.disc_updates);
+  if (!diff.empty()) {
+    throw Error(where + ": the model was trained with" + diff + "; --resume continues exactly, so give the same settings (only --learning-rate may change)");
+  }
+}
+
+}  // namespace
+
+GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
+  validate(o);
+  tune_malloc_for_training();
+  set_openblas_threads(1);
+  gan::set_torch_threads(o.num_threads);
+  const torch::Device device = gan::parse_device(o.device);
+
+  GanSettings settings;
+  settings.width = o.width;
+  settings.batch_size = o.batch_size;
+  settings.seed = o.seed;
+  settings.learning_rate = o.learning_rate;
+  settings.disc_updates = o.disc_updates;
+  settings.real_list = absolute_path(o.real_list);
+  settings.synthetic_list = absolute_path(o.synthetic_list);
+
+  const std::string settings_path = (fs::path(o.model_dir) / "settings.txt").string();
+  const std::string checkpoint_path = (fs::path(o.model_dir) / "checkpoint.pt").string();
+  const std::string log_path = (fs::path(o.model_dir) / "loss_log.csv").string();
+  if (o.resume) {
+    if (!fs::exists(checkpoint_path)) throw Error("--resume: no checkpoint " + checkpoint_path);
+    const GanSettings saved = read_gan_settings_file(settings_path);
+    check_resume_settings(saved, settings, settings_path);
+    // A new learning rate is the one setting a resumed run may change (a hand-made schedule).
+    if (saved.learning_rate != settings.learning_rate) {
+      log_info("learning rate changed from " + format_double(saved.learning_rate, 10) + " to " +
+               format_double(settings.learning_rate, 10));
+      write_gan_settings_file(settings_path, settings);
+    }
+  } else if (fs::exists(checkpoint_path)) {
+    throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");
+  }
+
+  BatchSampler real(o.seed, "real", load_domain(o.real_list, "real", o.batch_size, o.num_threads));
+  BatchSampler synthetic(o.seed, "synthetic",
+                         load_domain(o.synthetic_list, "synthetic", o.batch_size, o.num_threads));
+
+  torch::manual_seed(o.seed);
+  CycleGan model(settings, device);
+  GanTrainResult result;
+  long long step = 0;
+  if (o.resume) {
+    step = gan::load_checkpoint(checkpoint_path, model);
+    log_info("resumed " + checkpoint_path + " at step " + std::to_string(step));
+    truncate_loss_log(log_path, step);
+  } else {
+    std::error_code ec;
+    fs::create_directories(o.model_dir, ec);
+    if (!fs::is_directory(o.model_dir)) throw Error("cannot create model dir " + o.model_dir);
+    write_gan_settings_file(settings_path, settings);
+    truncate_loss_log(log_path, 0);
+    log_info("model width " + std::to_string(o.width) + ": " +
+             std::to_string(gan::count_parameters(*model.g_real)) + " parameters per generator, " +
+             std::to_string(gan::count_parameters(*model.d_real)) + " per discriminator");
+  }
+  result.first_step = step + 1;
+  result.last_step = step;
+  long long checkpoint_step = step;
+  if (step >= o.steps) {
+    log_info("the checkpoint is already at step " + std::to_string(step) + " >= --steps");
+    result.peak_rss_mb = peak_rss_mb();
+    return result;
+  }
+
+  std::ofstream log(log_path, std::ios::app);
+  if (!log) throw Error("cannot append to " + log_path);
+  Trainer trainer(model, real, synthetic, device);
+  StopRequestGuard stop;
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto last_progress = start;
+  double total_step_s = 0.0;
+  auto save = [&](long long s) {
+    if (!parameters_finite(model)) {
+      throw NonFiniteLoss("the parameters after step " + std::to_string(s) + " are not finite");
+    }
+    gan::save_checkpoint(checkpoint_path, model, s);
+    checkpoint_step = s;
+  };
+  try {
+    while (step < o.steps) {
+      if (stop.stop_requested()) {
+        result.interrupted = true;
+        break;
+      }
+      const auto t0 = Clock::now();
+      const StepLosses L = trainer.step(step + 1);
+      ++step;
+      const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
+      total_step_s += dt;
+      log << format_row(step, L, dt) << '\n' << std::flush;
+      result.last_step = step;
+      if (step % o.checkpoint_every == 0) save(step);
+      const auto now = Clock::now();
+      if (step == result.first_step || step == o.steps ||
+          std::chrono::duration<double>(now - last_progress).count() >= o.progress_interval_s) {
+        last_progress = now;
+        const double per_step = total_step_s / double(step - result.first_step + 1);
+        std::ostringstream os;
+        os.precision(4);
+        os << "step " << step << "/" << o.steps << "  D_R " << L.d_real << "  D_S " << L.d_synthetic
+           << "  G_SR " << L.g_real << "  G_RS " << L.g_synthetic << "  " << per_step << " s/step, "
+           << "ETA " << int(per_step * double(o.steps - step)) << " s";
+        log_info(os.str());
+      }
+    }
+    if (checkpoint_step != step) save(step);
+  } catch (const NonFiniteLoss& e) {
+    log.flush();
+    throw Error("step " + std::to_string(step + 1) + ": " + e.what() +
+                "; training stopped. The last good checkpoint " +
+                (checkpoint_step > 0 ? "(step " + std::to_string(checkpoint_step) + ", " + checkpoint_path + ")"
+                                     : std::string("(none was written)")) +
+                " is kept; lower --learning-rate or check the input RIRs");
+  }
+  if (result.interrupted) {
+    log_warning("interrupted after step " + std::to_string(step) + "; checkpoint written to " +
+                checkpoint_path + " (continue with --resume)");
+  }
+  const long long steps_run = step - result.first_step + 1;
+  result.mean_step_s = steps_run > 0 ? total_step_s / double(steps_run) : 0.0;
+  result.peak_rss_mb = peak_rss_mb();
+  std::ostringstream os;
+  os.precision(4);
+  os << "done: steps " << result.first_step << ".." << step << ", " << result.mean_step_s
+     << " s/step, peak RSS " << result.peak_rss_mb << " MB";
+  log_info(os.str());
+  return result;
+}
+
+}  // namespace tsrir

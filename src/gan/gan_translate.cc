@@ -1,0 +1,114 @@
+// gas-to-real: runs one trained generator over a RIR set, keeping each input's id (the original's
+// shuffled loader lost the input/output pairing; spec-digest §3.6).
+#include <c10/core/InferenceMode.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+
+#include "gan/gan_input.h"
+#include "gan/gan_networks.h"
+#include "gan/gan_runtime.h"
+#include "gan/gan_settings.h"
+#include "gan/ts_rirgan.h"
+#include "io/rir_set.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/parallel.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir {
+
+GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
+  if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
+  if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
+  if (o.keep_length != -1 && (o.keep_length < 1 || o.keep_length > (long long)kGanSliceLength)) {
+    throw Error("--keep-length must be 'input' or in [1, 16384], got " + std::to_string(o.keep_length));
+  }
+  std::string network;
+  if (o.direction == "synthetic-to-real") {
+    network = "g_real";
+  } else if (o.direction == "real-to-synthetic") {
+    network = "g_synthetic";
+  } else {
+    throw Error("--direction must be synthetic-to-real or real-to-synthetic, got '" + o.direction + "'");
+  }
+  set_openblas_threads(1);
+  gan::set_torch_threads(o.num_threads);
+  const torch::Device device = gan::parse_device(o.device);
+
+  std::string checkpoint = o.model;
+  if (fs::is_directory(o.model)) checkpoint = (fs::path(o.model) / "checkpoint.pt").string();
+  if (!fs::exists(checkpoint)) throw Error("no TS-RIRGAN checkpoint at " + checkpoint);
+  // Read the input list first: a bad list should fail before a slow model load.
+  const std::vector<RirRef> refs = read_rir_refs(o.input_list);
+  if (refs.empty()) throw Error(o.input_list + ": no RIRs to translate");
+
+  using Clock = std::chrono::steady_clock;
+  GanTranslateResult result;
+  auto t0 = Clock::now();
+  GanSettings settings;
+  long long step = 0;
+  gan::Generator generator = gan::load_generator(checkpoint, network, &settings, &step);
+  const std::string dir_settings = (fs::path(checkpoint).parent_path() / "settings.txt").string();
+  if (fs::exists(dir_settings)) {
+    check_same_architecture(read_gan_settings_file(dir_settings), settings, checkpoint + " vs " + dir_settings);
+  }
+  generator->to(device);
+  generator->eval();
+  result.model_load_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  log_info("loaded " + network + " (width " + std::to_string(settings.width) + ", step " +
+           std::to_string(step) + ") from " + checkpoint);
+
+  t0 = Clock::now();
+  auto last_progress = t0;
+  RirSetWriter writer(o.out_dir, o.format);
+  AudioReadOptions read_options;
+  read_options.target_rate_hz = kGanSampleRateHz;
+  read_options.channel = -1;
+  size_t cropped = 0;
+  c10::InferenceMode inference;
+  for (size_t begin = 0; begin < refs.size(); begin += size_t(o.batch_size)) {
+    const size_t n = std::min(refs.size() - begin, size_t(o.batch_size));
+    std::vector<GanInput> inputs(n);
+    parallel_for(n, o.num_threads, [&](size_t i) {
+      inputs[i] = prepare_gan_input(load_rir(refs[begin + i], read_options));
+    });
+    torch::Tensor x = torch::empty({int64_t(n), 1, int64_t(kGanSliceLength)});
+    for (size_t i = 0; i < n; ++i) {
+      std::memcpy(x[i].data_ptr<float>(), inputs[i].samples.data(), kGanSliceLength * sizeof(float));
+      cropped += inputs[i].cropped;
+    }
+    const torch::Tensor y = generator->forward(x.to(device)).to(torch::kCPU).contiguous();
+    for (size_t i = 0; i < n; ++i) {
+      const float* out = y[i].data_ptr<float>();
+      Signal rir;
+      rir.id = refs[begin + i].id;
+      rir.sample_rate_hz = kGanSampleRateHz;
+      const size_t length = o.keep_length < 0 ? inputs[i].length : size_t(o.keep_length);
+      const float scale = o.restore_level ? float(inputs[i].peak) : 1.0f;
+      rir.samples.resize(length);
+      for (size_t k = 0; k < length; ++k) rir.samples[k] = out[k] * scale;
+      writer.add(rir, refs[begin + i].room_id);
+    }
+    result.num_rirs += n;
+    const auto now = Clock::now();
+    if (std::chrono::duration<double>(now - last_progress).count() > 10.0) {
+      last_progress = now;
+      log_info("translated " + std::to_string(result.num_rirs) + "/" + std::to_string(refs.size()));
+    }
+  }
+  if (cropped > 0) {
+    log_warning(o.input_list + ": " + std::to_string(cropped) + " of " + std::to_string(refs.size()) +
+                " RIRs are longer than 16384 samples at 16 kHz; only their first 16384 samples were " +
+                "translated (as the original)");
+  }
+  writer.commit();
+  result.translate_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  result.peak_rss_mb = peak_rss_mb();
+  return result;
+}
+
+}  // namespace tsrir

@@ -1,0 +1,69 @@
+// TS-RIRGAN (Ratnarajah et al., ASRU 2021): a 1-D CycleGAN that translates synthetic RIRs into
+// real-like ones, trained on unpaired sets. This header is torch-free; LibTorch is confined to
+// the .cc files of src/gan. Architecture, losses and optimiser follow spec-digest §3.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "io/audio_io.h"
+
+namespace tsrir {
+
+struct GanTrainOptions {
+  std::string real_list;        // rir scp / rir_list / audio file: the "real" domain
+  std::string synthetic_list;   // the "synthetic" domain
+  std::string model_dir;        // settings.txt, checkpoint.pt, loss_log.csv
+  long long steps = 1000;       // total training iterations (a resumed run continues to this count)
+  int width = 64;               // model width `dim` (64 = the paper's model)
+  int batch_size = 64;          // the paper's batch
+  uint64_t seed = 0;
+  int num_threads = 1;
+  long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
+  bool resume = false;
+  std::string device = "cpu";   // "cpu" | "cuda"
+  double learning_rate = 3e-5;  // RMSProp (TF semantics), the paper's rate
+  int disc_updates = 2;         // discriminator updates per generator update
+  double progress_interval_s = 10.0;
+};
+
+struct GanTrainResult {
+  long long first_step = 0;     // first step run by this call (1 for a fresh run)
+  long long last_step = 0;      // last completed step (= the checkpoint's step)
+  bool interrupted = false;     // SIGINT/SIGTERM: stopped between steps, checkpoint written
+  double mean_step_s = 0.0;
+  double peak_rss_mb = 0.0;
+};
+
+// Trains (or resumes) a model. Throws Error on bad input, on a model dir that does not match the
+// options, and on a non-finite loss (the last checkpoint written before it stays in place).
+GanTrainResult train_ts_rirgan(const GanTrainOptions& options);
+
+// Output length/level conventions of the translation.
+struct GanTranslateOptions {
+  std::string model;            // model dir (uses its checkpoint.pt) or a checkpoint file
+  std::string input_list;
+  std::string out_dir;
+  // "synthetic-to-real" (G_SR, the paper's use) or "real-to-synthetic" (G_RS).
+  std::string direction = "synthetic-to-real";
+  int batch_size = 16;
+  // Output length in samples at 16 kHz (the original keeps 16000 of the 16384 generated), or -1:
+  // the input's length after resampling to 16 kHz, capped at 16384.
+  long long keep_length = 16000;
+  // false: the generator's output as is (peak-normalised input, tanh output in (-1, 1)), as the
+  // original. true: each output is scaled by the input's original peak |x|.
+  bool restore_level = false;
+  SampleFormat format = SampleFormat::kFloat32;
+  std::string device = "cpu";
+  int num_threads = 1;
+};
+
+struct GanTranslateResult {
+  size_t num_rirs = 0;
+  double model_load_s = 0.0;
+  double translate_s = 0.0;     // reading, model and writing, without the model load
+  double peak_rss_mb = 0.0;
+};
+
+GanTranslateResult translate_rirs(const GanTranslateOptions& options);
+
+}  // namespace tsrir

@@ -1,0 +1,299 @@
+// ts-rirgan-train and gas-to-real as a user runs them: option handling, bad input, exact resume,
+// determinism, interruption, non-finite losses, and the translation's id/length/level contract.
+// Tiny models (width 2, batch 2) keep each run to a second or two.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "gan_test_domains.h"
+#include "io/audio_io.h"
+#include "io/rir_set.h"
+
+extern char** environ;
+namespace fs = std::filesystem;
+using tsrir_test::DomainSpec;
+
+namespace {
+
+const std::string kBin = TSRIR_BIN_DIR;
+
+struct RunResult {
+  int status = -1;
+  std::string err;
+};
+
+RunResult run(const std::string& args, const std::string& scratch) {
+  const std::string err_path = scratch + "/stderr.txt";
+  const int raw = std::system((args + " 2>" + err_path + " >/dev/null").c_str());
+  RunResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  std::ifstream in(err_path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Loss columns only (the last column is the step's wall time).
+std::vector<std::string> loss_rows(const std::string& path) {
+  std::vector<std::string> rows;
+  std::istringstream in(slurp(path));
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) rows.push_back(line.substr(0, line.rfind(',')));
+  return rows;
+}
+
+class GanCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = (fs::temp_directory_path() /
+            ("tsrir_gan_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+             "_" + std::to_string(::getpid())))
+               .string();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    DomainSpec spec;
+    spec.length_s = 0.3;
+    synthetic_ = tsrir_test::write_domain(tsrir_test::make_domain(spec, "syn", 6, 1), dir_ + "/syn");
+    spec.mode_amplitude = 0.5;
+    real_ = tsrir_test::write_domain(tsrir_test::make_domain(spec, "real", 6, 2), dir_ + "/real");
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  std::string train(const std::string& extra, const std::string& model) const {
+    return kBin + "/ts-rirgan-train --real=" + real_ + " --synthetic=" + synthetic_ +
+           " --width=2 --batch-size=2 --num-threads=1 --seed=3 " + extra + " " + dir_ + "/" + model;
+  }
+  std::string dir_, real_, synthetic_;
+};
+
+TEST_F(GanCli, HelpAndUsageErrors) {
+  for (const char* program : {"ts-rirgan-train", "gas-to-real"}) {
+    EXPECT_EQ(std::system((kBin + "/" + program + " --help >" + dir_ + "/help.txt").c_str()), 0) << program;
+    EXPECT_NE(slurp(dir_ + "/help.txt").find("Example"), std::string::npos) << program;
+    RunResult r;
+    r = run(kBin + "/" + program + " --no-such-option x y z", dir_);
+    EXPECT_NE(r.status, 0) << program;
+    EXPECT_NE(r.err.find("ERROR"), std::string::npos) << program;
+  }
+  // Both spellings of an option.
+  RunResult r = run(train("--steps 1 --device=cpu", "m"), dir_);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(run(train("--steps=1 --device=tpu", "m2"), dir_).err.find("cpu or cuda"), std::string::npos);
+}
+
+TEST_F(GanCli, BadTrainingInput) {
+  { std::ofstream(dir_ + "/empty.scp"); }
+  RunResult r = run(kBin + "/ts-rirgan-train --real=" + dir_ + "/empty.scp --synthetic=" + synthetic_ +
+                  " --width=2 --batch-size=2 --steps=1 " + dir_ + "/m",
+              dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("empty"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ + "/m/checkpoint.pt"));
+
+  // Fewer RIRs than one batch.
+  r = run(kBin + "/ts-rirgan-train --real=" + real_ + " --synthetic=" + synthetic_ +
+              " --width=2 --batch-size=8 --steps=1 " + dir_ + "/m",
+          dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("at least --batch-size=8"), std::string::npos) << r.err;
+
+  // A missing file listed in the scp: the error names it.
+  { std::ofstream(dir_ + "/missing.scp") << "a " << dir_ << "/nope.wav\nb " << dir_ << "/nope2.wav\n"; }
+  r = run(kBin + "/ts-rirgan-train --real=" + dir_ + "/missing.scp --synthetic=" + synthetic_ +
+              " --width=2 --batch-size=2 --steps=1 " + dir_ + "/m",
+          dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("nope"), std::string::npos) << r.err;
+
+  // --resume without a checkpoint; a fresh run over an existing checkpoint.
+  EXPECT_NE(run(train("--steps=1 --resume", "m"), dir_).status, 0);
+  ASSERT_EQ(run(train("--steps=1", "m"), dir_).status, 0);
+  r = run(train("--steps=2", "m"), dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
+  // Resuming with another width is refused with the width named.
+  r = run(kBin + "/ts-rirgan-train --real=" + real_ + " --synthetic=" + synthetic_ +
+              " --width=3 --batch-size=2 --seed=3 --steps=2 --resume " + dir_ + "/m",
+          dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("width 2"), std::string::npos) << r.err;
+}
+
+TEST_F(GanCli, LongRirsAreCroppedWithWarning) {
+  DomainSpec spec;
+  spec.length_s = 1.5;  // 24000 samples > 16384
+  const std::string long_scp = tsrir_test::write_domain(tsrir_test::make_domain(spec, "long", 3, 9), dir_ + "/long");
+  RunResult r = run(kBin + "/ts-rirgan-train --real=" + long_scp + " --synthetic=" + synthetic_ +
+                  " --width=2 --batch-size=2 --steps=1 " + dir_ + "/m",
+              dir_);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("longer than 16384"), std::string::npos) << r.err;
+  r = run(kBin + "/gas-to-real --model=" + dir_ + "/m --keep-length=input " + long_scp + " " + dir_ + "/out", dir_);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("longer than 16384"), std::string::npos) << r.err;
+  EXPECT_EQ(tsrir::read_audio(dir_ + "/out/long_0.wav").samples.size(), 16384u);
+}
+
+// Same seed and threads: identical losses. 2 steps + --resume to 4 == 4 steps straight.
+TEST_F(GanCli, DeterministicAndResumesExactly) {
+  ASSERT_EQ(run(train("--steps=4 --checkpoint-every=2", "a"), dir_).status, 0);
+  ASSERT_EQ(run(train("--steps=4 --checkpoint-every=2", "b"), dir_).status, 0);
+  ASSERT_EQ(run(train("--steps=2", "c"), dir_).status, 0);
+  RunResult r = run(train("--steps=4 --resume", "c"), dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("resumed"), std::string::npos);
+  const auto a = loss_rows(dir_ + "/a/loss_log.csv");
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a, loss_rows(dir_ + "/b/loss_log.csv"));
+  EXPECT_EQ(a, loss_rows(dir_ + "/c/loss_log.csv"));
+  // Different seed: different run.
+  ASSERT_EQ(run(kBin + "/ts-rirgan-train --real=" + real_ + " --synthetic=" + synthetic_ +
+                    " --width=2 --batch-size=2 --num-threads=1 --seed=4 --steps=1 " + dir_ + "/d",
+                dir_).status, 0);
+  EXPECT_NE(a[0], loss_rows(dir_ + "/d/loss_log.csv")[0]);
+  // And the resumed model translates bit-identically to the straight one.
+  ASSERT_EQ(run(kBin + "/gas-to-real --model=" + dir_ + "/a " + synthetic_ + " " + dir_ + "/ta", dir_).status, 0);
+  ASSERT_EQ(run(kBin + "/gas-to-real --model=" + dir_ + "/c/checkpoint.pt " + synthetic_ + " " + dir_ + "/tc", dir_).status, 0);
+  EXPECT_EQ(slurp(dir_ + "/ta/syn_3.wav"), slurp(dir_ + "/tc/syn_3.wav"));
+}
+
+// SIGINT between steps: checkpoint at the last finished step, exit status 130, no temporaries,
+// and --resume continues from there.
+TEST_F(GanCli, InterruptWritesCheckpoint) {
+  const std::string model = dir_ + "/m";
+  std::vector<std::string> args = {kBin + "/ts-rirgan-train", "--real=" + real_, "--synthetic=" + synthetic_,
+                                   "--width=2", "--batch-size=2", "--num-threads=1", "--seed=3", "--steps=100000",
+                                   "--checkpoint-every=100000", model};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, (dir_ + "/train_err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (loss_rows(model + "/loss_log.csv").size() < 2 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_GE(loss_rows(model + "/loss_log.csv").size(), 2u) << slurp(dir_ + "/train_err.txt");
+  kill(pid, SIGINT);
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  ASSERT_TRUE(WIFEXITED(raw)) << slurp(dir_ + "/train_err.txt");
+  EXPECT_EQ(WEXITSTATUS(raw), 130);
+  const size_t done = loss_rows(model + "/loss_log.csv").size();
+  EXPECT_NE(slurp(dir_ + "/train_err.txt").find("interrupted after step " + std::to_string(done)), std::string::npos)
+      << slurp(dir_ + "/train_err.txt");
+  for (const auto& entry : fs::directory_iterator(model)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
+  }
+  RunResult r = run(train("--steps=" + std::to_string(done + 1) + " --resume", "m"), dir_);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("at step " + std::to_string(done)), std::string::npos) << r.err;
+  EXPECT_EQ(loss_rows(model + "/loss_log.csv").size(), done + 1);
+}
+
+// An exploding learning rate: a clear stop, no NaN row, and the checkpoint on disk still loads.
+TEST_F(GanCli, NonFiniteLossStopsAndKeepsCheckpoint) {
+  ASSERT_EQ(run(train("--steps=2 --checkpoint-every=1", "m"), dir_).status, 0);
+  RunResult r = run(train("--steps=50 --checkpoint-every=1 --resume --learning-rate=1e30", "m"), dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("not finite"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("last good checkpoint (step"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir_ + "/m/loss_log.csv").find("nan"), std::string::npos);
+  r = run(kBin + "/gas-to-real --model=" + dir_ + "/m " + synthetic_ + " " + dir_ + "/out", dir_);
+  EXPECT_EQ(r.status, 0) << r.err;
+}
+
+TEST_F(GanCli, TranslationKeepsIdsLengthsAndLevels) {
+  ASSERT_EQ(run(train("--steps=1", "m"), dir_).status, 0);
+  // Inputs at 8 kHz with distinct peaks, in a rir_list with room ids; 5 RIRs in batches of 2.
+  std::ofstream list(dir_ + "/rir_list");
+  std::vector<double> peaks;
+  for (int i = 0; i < 5; ++i) {
+    tsrir::Signal s;
+    s.id = "in-" + std::to_string(i);
+    s.sample_rate_hz = 8000;
+    s.samples.assign(2000 + 100 * i, 0.0f);
+    for (size_t k = 0; k < s.samples.size(); ++k) s.samples[k] = float(0.1 * (i + 1) * std::exp(-double(k) / 400.0) * std::sin(0.3 * k + i));
+    tsrir::AudioWriteOptions o;
+    o.format = tsrir::SampleFormat::kFloat32;
+    tsrir::write_wav(dir_ + "/" + s.id + ".wav", s, o);
+    list << "--rir-id " << s.id << " --room-id room" << (i % 2) << " " << dir_ << "/" << s.id << ".wav\n";
+  }
+  list.close();
+  const std::string model = " --model=" + dir_ + "/m --batch-size=2 ";
+  RunResult r = run(kBin + "/gas-to-real" + model + dir_ + "/rir_list " + dir_ + "/o1", dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto refs = tsrir::read_rir_refs(dir_ + "/o1/rir.scp");
+  ASSERT_EQ(refs.size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(refs[i].id, "in-" + std::to_string(i));
+    const tsrir::Signal s = tsrir::read_audio(refs[i].rxfilename);
+    EXPECT_EQ(s.sample_rate_hz, 16000.0);
+    EXPECT_EQ(s.samples.size(), 16000u);  // the original's default length
+  }
+  const auto rooms = tsrir::read_rir_refs(dir_ + "/o1/rir_list");
+  ASSERT_EQ(rooms.size(), 5u);
+  EXPECT_EQ(rooms[3].room_id, "room1");
+
+  // Input length at 16 kHz, level restored: the output peak scales by the input peak.
+  r = run(kBin + "/gas-to-real" + model + "--keep-length=input --restore-level --format=int16 " + dir_ +
+              "/rir_list " + dir_ + "/o2",
+          dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (int i = 0; i < 5; ++i) {
+    const std::string id = "in-" + std::to_string(i);
+    const tsrir::Signal plain = tsrir::read_audio(dir_ + "/o1/" + id + ".wav");
+    const tsrir::Signal restored = tsrir::read_audio(dir_ + "/o2/" + id + ".wav");
+    EXPECT_EQ(restored.samples.size(), size_t(2 * (2000 + 100 * i)));
+    const tsrir::Signal input = tsrir::read_audio(dir_ + "/" + id + ".wav", {0, 16000.0, ""});
+    double input_peak = 0;
+    for (float v : input.samples) input_peak = std::max(input_peak, double(std::abs(v)));
+    // int16 quantisation: half an LSB.
+    for (size_t k = 0; k < restored.samples.size(); k += 97) {
+      EXPECT_NEAR(restored.samples[k], plain.samples[k] * input_peak, 1.0 / 32768 + 1e-6) << id << " " << k;
+    }
+  }
+  // Bad options and models.
+  EXPECT_NE(run(kBin + "/gas-to-real" + model + "--keep-length=20000 " + dir_ + "/rir_list " + dir_ + "/o3", dir_).status, 0);
+  EXPECT_NE(run(kBin + "/gas-to-real" + model + "--direction=sideways " + dir_ + "/rir_list " + dir_ + "/o3", dir_).status, 0);
+  { std::ofstream(dir_ + "/junk.pt") << "garbage"; }
+  r = run(kBin + "/gas-to-real --model=" + dir_ + "/junk.pt " + dir_ + "/rir_list " + dir_ + "/o3", dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("junk.pt"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ + "/o3"));
+  // A checkpoint moved next to settings of another width.
+  fs::create_directories(dir_ + "/mixed");
+  fs::copy_file(dir_ + "/m/checkpoint.pt", dir_ + "/mixed/checkpoint.pt");
+  std::string settings = slurp(dir_ + "/m/settings.txt");
+  settings.replace(settings.find("width 2"), 7, "width 8");
+  { std::ofstream(dir_ + "/mixed/settings.txt") << settings; }
+  r = run(kBin + "/gas-to-real --model=" + dir_ + "/mixed " + dir_ + "/rir_list " + dir_ + "/o3", dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("width"), std::string::npos) << r.err;
+}
+
+}  // namespace
