@@ -1,5 +1,7 @@
 #include "io/atomic_output.h"
 
+#include <pthread.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -97,11 +99,29 @@ AtomicOutputDir::~AtomicOutputDir() {
 void AtomicOutputDir::commit() {
   std::error_code ec;
   if (fs::exists(final_dir_)) {
-    // Move the old output aside first so the final name is never half-old, half-new.
+    // Move the old output aside first so the final name is never half-old, half-new. Ctrl-C
+    // between the two renames would make the handler delete both the new output and the old one
+    // (both are registered temporaries), so the interrupt waits until the new one is in place.
+    sigset_t block, saved;
+    sigemptyset(&block);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, sig);
+    pthread_sigmask(SIG_BLOCK, &block, &saved);
     std::string old = make_temp_path(final_dir_ + ".old");
     fs::rename(final_dir_, old, ec);
-    if (ec) throw Error("cannot replace " + final_dir_ + ": " + ec.message());
-    commit_temp_path(temp_dir_, final_dir_);
+    if (ec) {
+      unregister_temp_path(old);
+      pthread_sigmask(SIG_SETMASK, &saved, nullptr);
+      throw Error("cannot replace " + final_dir_ + ": " + ec.message());
+    }
+    try {
+      commit_temp_path(temp_dir_, final_dir_);
+    } catch (...) {
+      fs::rename(old, final_dir_, ec);  // put the previous output back
+      unregister_temp_path(old);
+      pthread_sigmask(SIG_SETMASK, &saved, nullptr);
+      throw;
+    }
+    pthread_sigmask(SIG_SETMASK, &saved, nullptr);
     discard_temp_path(old);
   } else {
     commit_temp_path(temp_dir_, final_dir_);

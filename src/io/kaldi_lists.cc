@@ -61,8 +61,17 @@ struct ParsedLine {
   std::string rxfilename;
 };
 
+// A NUL or other control byte would be cut off or reinterpreted by the C file APIs ("a.wav\0x"
+// opens "a.wav"): refused, as in tables.
+void check_no_control_characters(const std::string& line, const std::string& context) {
+  for (unsigned char c : line) {
+    if (c < 0x20 && c != '\t') throw Error(context + ": control character in line");
+  }
+}
+
 ParsedLine parse_option_line(const std::string& line, const std::set<std::string>& known,
                              const std::string& context) {
+  check_no_control_characters(line, context);
   ParsedLine p;
   auto words = shlex_split(line, context);
   std::vector<std::string> rest;
@@ -90,6 +99,7 @@ ParsedLine parse_option_line(const std::string& line, const std::set<std::string
     throw Error(context + ": more than one file name: '" + rest[0] + "' and '" + rest[1] + "'");
   }
   for (size_t i = 0; i < rest.size(); ++i) p.rxfilename += (i ? " " : "") + rest[i];
+  if (trim(p.rxfilename).empty()) throw Error(context + ": empty file name (rxfilename)");
   return p;
 }
 
@@ -122,7 +132,9 @@ std::vector<std::pair<int, std::string>> read_lines(const std::string& path) {
   for (std::string line; std::getline(in, line);) {
     ++n;
     std::string t = trim(line);
-    if (!t.empty()) lines.emplace_back(n, t);
+    if (t.empty()) continue;
+    check_no_control_characters(t, path + ":" + std::to_string(n));
+    lines.emplace_back(n, t);
   }
   return lines;
 }
@@ -239,8 +251,9 @@ std::string format_rir_list_line(const RirListEntry& e) {
   if (e.drr) os << " --drr " << format_double(*e.drr);
   if (e.cte) os << " --cte " << format_double(*e.cte);
   if (e.probability) os << " --probability " << format_double(*e.probability);
-  // A pipe stays a pipe (it is already shell text); a path is quoted.
-  os << ' ' << (ends_with(trim(e.rxfilename), "|") ? e.rxfilename : shell_quote(e.rxfilename));
+  // Quoted as one word, pipes too (Kaldi's own form: "sox x.wav -t wav - |"): written bare, a pipe
+  // would be re-split by shlex on reading and lose its own quoting ('my file.wav' -> my file.wav).
+  os << ' ' << shell_quote(e.rxfilename);
   return os.str();
 }
 
