@@ -16,6 +16,12 @@ int main(int argc, char** argv) {
         "<model-dir> receives settings.txt, checkpoint.pt (networks + optimiser state, written every\n"
         "--checkpoint-every steps, at the end and on SIGINT/SIGTERM) and loss_log.csv (one row per step).\n"
         "Deterministic for a given --seed and --num-threads on CPU; --resume continues exactly.\n"
+        "Departures from the original (off by default): --init=he replaces the original's Glorot-uniform\n"
+        "kernels with He-uniform ones, so that small models (width 4-16) trained for a few hundred CPU\n"
+        "steps start with an output that depends on the input (with Glorot the 13 un-normalised ReLU\n"
+        "layers shrink the signal ~3e-4); --rmsprop-initial-ms=0 starts RMSProp's mean square at 0\n"
+        "(torch/Keras) instead of TF1's 1, which makes the first ~130 steps almost no-ops;\n"
+        "--cycle-weight/--identity-weight change the L1 weights.\n"
         "\n"
         "Usage: ts-rirgan-train [options] --real=<rir-scp> --synthetic=<rir-scp> <model-dir>\n"
         "Example:\n"
@@ -33,6 +39,10 @@ int main(int argc, char** argv) {
     cli.option("device", &o.device, "cpu or cuda (needs a LibTorch with CUDA and a GPU)");
     cli.option("learning-rate", &o.learning_rate, "RMSProp learning rate (the paper's: 3e-5)");
     cli.option("disc-updates", &o.disc_updates, "Discriminator updates per generator update");
+    cli.option("init", &o.init, "Kernel init of a new model: glorot (the original) or he (small CPU models)");
+    cli.option("rmsprop-initial-ms", &o.rmsprop_initial_ms, "RMSProp's initial mean square of a new model: 1 (TF1, the original) or 0");
+    cli.option("cycle-weight", &o.cycle_weight, "Generator loss weight per cycle L1 term (the original's: 250)");
+    cli.option("identity-weight", &o.identity_weight, "Generator loss weight of the identity L1 term (the original's: 175)");
     cli.option("progress-interval", &o.progress_interval_s, "Seconds between progress lines on stderr");
     const auto args = cli.parse(argc, argv, 1, 1);
     o.model_dir = args[0];

@@ -1,6 +1,7 @@
 #include "gan/gan_networks.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "io/atomic_output.h"
 #include "util/error.h"
@@ -11,11 +12,18 @@ namespace {
 
 constexpr const char* kCheckpointTag = "tsrir-ts-rirgan-checkpoint-v1";
 
-void glorot_init(torch::Tensor& weight, torch::Tensor& bias) {
+// `fan` is the number of inputs summed into one output (in*k for a conv, in*k/stride for the
+// transposed conv), used by kHe only.
+void init_layer(torch::Tensor& weight, torch::Tensor& bias, InitKind init, double fan) {
   torch::NoGradGuard no_grad;
-  // Glorot's limit depends on fan_in + fan_out only, so torch's [out, in, k] and TF's [k, in, out]
-  // layouts give the same distribution.
-  torch::nn::init::xavier_uniform_(weight);
+  if (init == InitKind::kHe) {
+    const double limit = std::sqrt(6.0 / fan);  // uniform, variance 2/fan (ReLU gain)
+    weight.uniform_(-limit, limit);
+  } else {
+    // Glorot's limit depends on fan_in + fan_out only, so torch's [out, in, k] and TF's
+    // [k, in, out] layouts give the same distribution.
+    torch::nn::init::xavier_uniform_(weight);
+  }
   torch::nn::init::zeros_(bias);
 }
 
@@ -84,11 +92,18 @@ void read_into(torch::serialize::InputArchive& archive, const std::string& key,
 
 }  // namespace
 
-SameConv1dImpl::SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride)
+InitKind parse_init_kind(const std::string& name) {
+  if (name == "glorot") return InitKind::kGlorot;
+  if (name == "he") return InitKind::kHe;
+  throw Error("--init must be glorot or he, got '" + name + "'");
+}
+
+SameConv1dImpl::SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
+                               InitKind init)
     : kernel_length_(kernel_length), stride_(stride) {
   conv_ = register_module("conv", torch::nn::Conv1d(torch::nn::Conv1dOptions(in_channels, out_channels, kernel_length)
                                                         .stride(stride).bias(true)));
-  glorot_init(conv_->weight, conv_->bias);
+  init_layer(conv_->weight, conv_->bias, init, double(in_channels) * kernel_length);
 }
 
 torch::Tensor SameConv1dImpl::forward(const torch::Tensor& x) {
@@ -100,11 +115,11 @@ torch::Tensor SameConv1dImpl::forward(const torch::Tensor& x) {
 }
 
 SameConvTranspose1dImpl::SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length,
-                                                 int stride)
+                                                 int stride, InitKind init)
     : out_channels_(out_channels), kernel_length_(kernel_length), stride_(stride) {
   weight = register_parameter("weight", torch::empty({in_channels, out_channels, kernel_length}));
   bias = register_parameter("bias", torch::empty({out_channels}));
-  glorot_init(weight, bias);
+  init_layer(weight, bias, init, double(in_channels) * kernel_length / stride);
   // Output n = s*m + r takes x[m + o] * w[j] for j = (r + p) - s*o (0 <= j < k), o an offset.
   const int s = stride, k = kernel_length, p = std::max(k - s, 0) / 2;
   auto tap = [&](int r, int o) { return r + p - s * o; };
@@ -147,7 +162,7 @@ torch::Tensor SameConvTranspose1dImpl::forward(const torch::Tensor& x) {
       .reshape({batch, out_channels_, stride_ * length});
 }
 
-GeneratorImpl::GeneratorImpl(int width, int kernel_length) {
+GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init) {
   const int w = width;
   const int down_channels[9][2] = {{1, w},         {w, 2 * w},     {2 * w, 4 * w},
                                    {4 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w},
@@ -155,13 +170,13 @@ GeneratorImpl::GeneratorImpl(int width, int kernel_length) {
   for (int i = 0; i < 9; ++i) {
     down_.push_back(register_module("downconv_" + std::to_string(i),
                                     SameConv1d(down_channels[i][0], down_channels[i][1], kernel_length,
-                                               i < 4 ? 4 : 1)));
+                                               i < 4 ? 4 : 1, init)));
   }
   // The original's comments say 256/128/64 on the way up; its code uses dim * 16, 8, 4.
   const int up_channels[4][2] = {{8 * w, 16 * w}, {16 * w, 8 * w}, {8 * w, 4 * w}, {4 * w, 1}};
   for (int i = 0; i < 4; ++i) {
     up_.push_back(register_module("upconv_" + std::to_string(i + 1),
-                                  SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4)));
+                                  SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4, init)));
   }
 }
 
@@ -171,16 +186,17 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
   return torch::tanh(up_.back()->forward(x));
 }
 
-DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length) {
+DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, InitKind init) {
   int in = 1;
   for (int i = 0; i < 5; ++i) {
     const int out = width << i;
-    down_.push_back(register_module("downconv_" + std::to_string(i), SameConv1d(in, out, kernel_length, 4)));
+    down_.push_back(register_module("downconv_" + std::to_string(i), SameConv1d(in, out, kernel_length, 4, init)));
     in = out;
   }
   // 16384 / 4^5 = 16 positions of 16w channels.
   output_ = register_module("output", torch::nn::Linear(16 * in, 1));
-  glorot_init(output_->weight, output_->bias);
+  // The linear logit keeps Glorot under either init (no ReLU follows it).
+  init_layer(output_->weight, output_->bias, InitKind::kGlorot, 0.0);
 }
 
 torch::Tensor DiscriminatorImpl::forward(torch::Tensor x) {
@@ -189,9 +205,10 @@ torch::Tensor DiscriminatorImpl::forward(torch::Tensor x) {
   return output_->forward(x).squeeze(1);
 }
 
-TfRmsProp::TfRmsProp(std::vector<torch::Tensor> params, double learning_rate, double decay, double epsilon)
+TfRmsProp::TfRmsProp(std::vector<torch::Tensor> params, double learning_rate, double decay, double epsilon,
+                     double initial_mean_square)
     : params_(std::move(params)), learning_rate_(learning_rate), decay_(decay), epsilon_(epsilon) {
-  for (const auto& p : params_) mean_square_.push_back(torch::ones_like(p).detach());
+  for (const auto& p : params_) mean_square_.push_back(torch::full_like(p, initial_mean_square).detach());
 }
 
 void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
@@ -207,14 +224,15 @@ void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
 
 CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   // Construction order fixes which random numbers each network's initialiser draws.
-  g_real = Generator(s.width, s.kernel_length);
-  g_synthetic = Generator(s.width, s.kernel_length);
-  d_real = Discriminator(s.width, s.kernel_length);
-  d_synthetic = Discriminator(s.width, s.kernel_length);
+  const InitKind init = parse_init_kind(s.init);
+  g_real = Generator(s.width, s.kernel_length, init);
+  g_synthetic = Generator(s.width, s.kernel_length, init);
+  d_real = Discriminator(s.width, s.kernel_length, init);
+  d_synthetic = Discriminator(s.width, s.kernel_length, init);
   torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
   for (auto* m : modules) {
     m->to(device);
-    optimizers.emplace_back(m->parameters(), s.learning_rate);
+    optimizers.emplace_back(m->parameters(), s.learning_rate, 0.9, 1e-10, s.rmsprop_initial_ms);
   }
 }
 

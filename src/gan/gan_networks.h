@@ -11,11 +11,19 @@
 namespace tsrir {
 namespace gan {
 
+// Kernel initialisation. kGlorot is the original's (TF1 tf.layers default, Glorot-uniform). kHe
+// (He-uniform, ReLU gain, fan = the inputs summed per output) is a departure for small CPU models:
+// with Glorot the 13 un-normalised ReLU layers shrink the signal by ~3e-4, so a generator's output
+// starts near zero and does not depend on its input for hundreds of steps. Biases start at zero.
+enum class InitKind { kGlorot, kHe };
+InitKind parse_init_kind(const std::string& name);  // "glorot" | "he"; Error otherwise
+
 // tf.layers.conv1d(padding='SAME'): out = ceil(L/s), pad_total = max((out-1)s + k - L, 0), the
 // smaller half on the left. Cross-correlation, bias, Glorot-uniform kernel, zero bias.
 class SameConv1dImpl : public torch::nn::Module {
  public:
-  SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride);
+  SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
+                 InitKind init = InitKind::kGlorot);
   torch::Tensor forward(const torch::Tensor& x);
 
  private:
@@ -31,7 +39,8 @@ TORCH_MODULE(SameConv1d);
 // interleave: LibTorch's CPU transposed convolution (col2im) is 5-40x slower than its conv.
 class SameConvTranspose1dImpl : public torch::nn::Module {
  public:
-  SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length, int stride);
+  SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
+                          InitKind init = InitKind::kGlorot);
   torch::Tensor forward(const torch::Tensor& x);
   torch::Tensor weight, bias;
 
@@ -47,7 +56,7 @@ TORCH_MODULE(SameConvTranspose1d);
 // and no skip connections. Input and output [B, 1, 16384].
 class GeneratorImpl : public torch::nn::Module {
  public:
-  GeneratorImpl(int width, int kernel_length);
+  GeneratorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot);
   torch::Tensor forward(torch::Tensor x);
 
  private:
@@ -60,7 +69,7 @@ TORCH_MODULE(Generator);
 // [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
 class DiscriminatorImpl : public torch::nn::Module {
  public:
-  DiscriminatorImpl(int width, int kernel_length);
+  DiscriminatorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot);
   torch::Tensor forward(torch::Tensor x);
 
  private:
@@ -73,8 +82,10 @@ TORCH_MODULE(Discriminator);
 // ONE (TF's slot initialiser, unlike torch's zeros), var <- var - lr*g/sqrt(ms + eps).
 class TfRmsProp {
  public:
+  // initial_mean_square: TF's 1 (the original) or 0 (torch/Keras): with 1, gradients of ~1e-3
+  // give steps ~1000x smaller than lr until ms has decayed to g^2 (0.9^n = 1e-6: ~130 steps).
   TfRmsProp(std::vector<torch::Tensor> params, double learning_rate, double decay = 0.9,
-            double epsilon = 1e-10);
+            double epsilon = 1e-10, double initial_mean_square = 1.0);
   // Applies one update with gradients ordered as params() (undefined ones are skipped).
   void step(const std::vector<torch::Tensor>& grads);
   std::vector<torch::Tensor>& mean_square() { return mean_square_; }

@@ -23,6 +23,10 @@ std::string gan_settings_text(const GanSettings& s) {
      << "seed " << s.seed << "\n"
      << "learning_rate " << format_double(s.learning_rate, 10) << "\n"
      << "disc_updates " << s.disc_updates << "\n"
+     << "init " << s.init << "\n"
+     << "cycle_weight " << format_double(s.cycle_weight, 10) << "\n"
+     << "identity_weight " << format_double(s.identity_weight, 10) << "\n"
+     << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 10) << "\n"
      << "real_list " << s.real_list << "\n"
      << "synthetic_list " << s.synthetic_list << "\n";
   return os.str();
@@ -61,6 +65,15 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
       s.learning_rate = parse_double(value, ctx);
     } else if (key == "disc_updates") {
       s.disc_updates = int(parse_int(value, ctx));
+    } else if (key == "init") {
+      if (value != "glorot" && value != "he") throw Error(ctx + ": init must be glorot or he");
+      s.init = value;
+    } else if (key == "cycle_weight") {
+      s.cycle_weight = parse_double(value, ctx);
+    } else if (key == "identity_weight") {
+      s.identity_weight = parse_double(value, ctx);
+    } else if (key == "rmsprop_initial_ms") {
+      s.rmsprop_initial_ms = parse_double(value, ctx);
     } else if (key == "real_list") {
       s.real_list = value;
     } else if (key == "synthetic_list") {

@@ -15,6 +15,12 @@ struct GanSettings {
   uint64_t seed = 0;
   double learning_rate = 3e-5;
   int disc_updates = 2;
+  // Departures from the original for small CPU models (defaults = the original): kernel init
+  // ("glorot" | "he", used only when a model is created) and the generators' L1 loss weights.
+  std::string init = "glorot";
+  double cycle_weight = 250.0;     // per cycle L1 term (10 * 25)
+  double identity_weight = 175.0;  // identity L1 (5 * 35)
+  double rmsprop_initial_ms = 1.0;  // RMSProp's initial mean square: 1 (TF, the original) or 0
   std::string real_list;
   std::string synthetic_list;
 };

@@ -27,10 +27,9 @@ namespace {
 using gan::CycleGan;
 
 // Loss weights of the original: LAMBDA = 10; D loss 0.5*LAMBDA*(...); G loss
-// adv + 25*(10*L1_cycle_R + 10*L1_cycle_S) + 35*(5*L1_identity).
+// adv + 25*(10*L1_cycle_R + 10*L1_cycle_S) + 35*(5*L1_identity). The two generator L1 weights
+// (250, 175) are settings (cycle_weight, identity_weight) with these defaults.
 constexpr double kDiscriminatorWeight = 5.0;
-constexpr double kCycleWeight = 250.0;
-constexpr double kIdentityWeight = 175.0;
 
 const char* const kLogHeader =
     "step,d_real,d_synthetic,g_real,g_synthetic,adv_real,adv_synthetic,cycle_l1_real,"
@@ -192,7 +191,8 @@ class Trainer {
     const torch::Tensor cycle_source = (source - f->forward(translated)).abs().mean();
     const torch::Tensor cycle_target = (target - target_cycled).abs().mean();
     const torch::Tensor identity = (target - target_same).abs().mean();
-    const torch::Tensor loss = adv + kCycleWeight * (cycle_source + cycle_target) + kIdentityWeight * identity;
+    const torch::Tensor loss = adv + m_.settings.cycle_weight * (cycle_source + cycle_target) +
+                               m_.settings.identity_weight * identity;
     const double total = checked(loss, real_side ? "G_real" : "G_synthetic");
     apply(m_.optimizers[real_side ? 0 : 1], loss);
     if (real_side) {
@@ -269,6 +269,10 @@ void validate(const GanTrainOptions& o) {
   if (o.checkpoint_every < 1) throw Error("--checkpoint-every must be >= 1");
   if (o.disc_updates < 1) throw Error("--disc-updates must be >= 1");
   if (!(o.learning_rate > 0) || !std::isfinite(o.learning_rate)) throw Error("--learning-rate must be > 0");
+  gan::parse_init_kind(o.init);
+  if (o.rmsprop_initial_ms != 0.0 && o.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
+  if (!(o.cycle_weight >= 0) || !std::isfinite(o.cycle_weight)) throw Error("--cycle-weight must be >= 0");
+  if (!(o.identity_weight >= 0) || !std::isfinite(o.identity_weight)) throw Error("--identity-weight must be >= 0");
 }
 
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
@@ -277,6 +281,10 @@ void check_resume_settings(const GanSettings& saved, const GanSettings& asked, c
   if (saved.batch_size != asked.batch_size) diff += " --batch-size=" + std::to_string(saved.batch_size);
   if (saved.seed != asked.seed) diff += " --seed=" + std::to_string(saved.seed);
   if (saved.disc_updates != asked.disc_updates) diff += " --disc-updates=" + std::to_string(saved.disc_updates);
+  if (saved.cycle_weight != asked.cycle_weight) diff += " --cycle-weight=" + format_double(saved.cycle_weight, 10);
+  if (saved.identity_weight != asked.identity_weight) {
+    diff += " --identity-weight=" + format_double(saved.identity_weight, 10);
+  }
   if (!diff.empty()) {
     throw Error(where + ": the model was trained with" + diff + "; --resume continues exactly, so give the same settings (only --learning-rate may change)");
   }
@@ -297,6 +305,10 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   settings.seed = o.seed;
   settings.learning_rate = o.learning_rate;
   settings.disc_updates = o.disc_updates;
+  settings.init = o.init;
+  settings.cycle_weight = o.cycle_weight;
+  settings.identity_weight = o.identity_weight;
+  settings.rmsprop_initial_ms = o.rmsprop_initial_ms;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
 
@@ -307,6 +319,9 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     if (!fs::exists(checkpoint_path)) throw Error("--resume: no checkpoint " + checkpoint_path);
     const GanSettings saved = read_gan_settings_file(settings_path);
     check_resume_settings(saved, settings, settings_path);
+    // The initialisers only matter when a model is created.
+    settings.init = saved.init;
+    settings.rmsprop_initial_ms = saved.rmsprop_initial_ms;
     // A new learning rate is the one setting a resumed run may change (a hand-made schedule).
     if (saved.learning_rate != settings.learning_rate) {
       log_info("learning rate changed from " + format_double(saved.learning_rate, 10) + " to " +

@@ -23,6 +23,11 @@ struct GanTrainOptions {
   std::string device = "cpu";   // "cpu" | "cuda"
   double learning_rate = 3e-5;  // RMSProp (TF semantics), the paper's rate
   int disc_updates = 2;         // discriminator updates per generator update
+  // Departures from the original, for small CPU models; the defaults are the original's.
+  std::string init = "glorot";  // "glorot" (the original) | "he" (see gan_networks.h)
+  double cycle_weight = 250.0;  // generator loss weight of each cycle L1 term
+  double identity_weight = 175.0;  // generator loss weight of the identity L1 term
+  double rmsprop_initial_ms = 1.0;  // RMSProp mean-square start: 1 (TF, the original) or 0
   double progress_interval_s = 10.0;
 };
 
