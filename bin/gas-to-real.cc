@@ -34,6 +34,9 @@ int main(int argc, char** argv) {
     cli.option("format", &format, "Output sample format: int16 or float");
     cli.option("device", &o.device, "cpu or cuda (needs a LibTorch with CUDA and a GPU)");
     cli.option("num-threads", &o.num_threads, "CPU threads for LibTorch and reading");
+    cli.option("precision", &o.precision,
+               "float32, or bfloat16: ~2.5x faster on CPUs with AVX512-BF16/AMX (slower without), "
+               "output within ~1% RMS of float32");
     const auto args = cli.parse(argc, argv, 2, 2);
     if (model.empty()) throw tsrir::Error("--model is required");
     o.model = model;

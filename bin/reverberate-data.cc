@@ -54,7 +54,11 @@ const char* kUsage =
     "  as Kaldi does: pipes must run from the same directory.\n"
     "Recordings shorter than the RIR are fine; shorter noises are looped; RIRs and noises at another\n"
     "sample rate are resampled to the speech's rate, in both modes; --source-sampling-rate (Kaldi's\n"
-    "option) is accepted and, with --write-wavs, checked against each recording's rate.\n";
+    "option) is accepted and, with --write-wavs, checked against each recording's rate.\n"
+    "Long recordings: with --write-wavs, those beyond --max-in-memory-duration (default 300 s) are\n"
+    "read in passes with memory independent of their length (a 2-hour one: ~30 MB, not ~2 GB) and\n"
+    "give the same wav; a piped one is first copied into the wav directory, as is the unscaled output\n"
+    "(float, ~230 MB per hour at 16 kHz), both removed at once. Pipe mode streams in wav-reverberate.\n";
 
 // Kaldi's reverberate_data_dir.py takes booleans as "--shift-output true"; accept that form too.
 std::vector<std::string> join_boolean_values(int argc, char** argv, const std::vector<std::string>& flags) {
@@ -113,6 +117,10 @@ int main(int argc, char** argv) {
     cl.option("pipe-program", &o.pipe_program,
               "program called by the pipes (default: wav-reverberate next to this program)");
     cl.option("num-threads", &o.num_threads, "threads for --write-wavs");
+    cl.option("max-in-memory-duration", &o.max_in_memory_s,
+              "with --write-wavs: recordings longer than this many seconds are reverberated in passes over the "
+              "file, with memory independent of their length and the same wav (temporaries in the wav dir); "
+              "0 = all");
     std::vector<std::string> args =
         join_boolean_values(argc, argv, {"shift-output", "normalize-output", "include-original-data"});
     std::vector<const char*> cargs;

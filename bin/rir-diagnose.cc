@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     std::string command = "rir-diagnose";
     for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
     const diagnose::MeasuredSet set = diagnose::load_measured_set(args[0], args[1]);
-    const diagnose::Diagnosis d = diagnose::diagnose_set(set.rooms, set.measured, options);
+    const diagnose::Diagnosis d = diagnose::diagnose_set(set.rooms, set.measured, options, set.where);
     std::cout << diagnose::write_diagnosis(d, args[2], command);
     return 0;
   });

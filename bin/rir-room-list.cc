@@ -81,9 +81,14 @@ int main(int argc, char** argv) {
     draw_options.seed = static_cast<uint64_t>(static_cast<int64_t>(seed));
     const std::vector<sim::RoomSpec> rooms = sim::rooms_from_setups(setups, draw_options);
 
+    std::string header = "# made by rir-room-list --format=" + format + " --absorption-range=" + absorption_range +
+                         " --absorption-draw=" + draw + " --seed=" + std::to_string(seed) + " from " + args[0];
+    // A newline in the input's name or an option would end the comment and leave a bad line.
+    for (char& c : header) {
+      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    }
     AtomicTextFile out(args[1]);
-    out.stream() << "# made by rir-room-list --format=" << format << " --absorption-range=" << absorption_range
-                 << " --absorption-draw=" << draw << " --seed=" << seed << " from " << args[0] << "\n";
+    out.stream() << header << "\n";
     for (const sim::RoomSpec& r : rooms) out.stream() << sim::format_room_list_line(r) << "\n";
     out.commit();
     log_info("wrote " + std::to_string(rooms.size()) + " room-list lines");

@@ -38,7 +38,11 @@ const char* kUsage =
     "signal's first samples); 16-bit output is rounded to nearest (Kaldi truncates), a <= 1 LSB\n"
     "difference; --help prints to stdout.\n"
     "Extensions (tsrir; Kaldi's binary rejects them): --additive-offsets, --loop-additive-signals,\n"
-    "--snr-reference.\n";
+    "--snr-reference, --max-in-memory-duration.\n"
+    "Long inputs: beyond --max-in-memory-duration (default 300 s) the input is read in three passes\n"
+    "(statistics; reverberation to a temporary file; scaling and encoding), so a 2-hour utterance\n"
+    "needs ~30 MB instead of ~1.3 GB, with the same output; the temporary holds the output as float\n"
+    "(~230 MB per hour at 16 kHz) next to a file output, else in $TMPDIR (default /tmp).\n";
 
 }  // namespace
 
@@ -75,6 +79,10 @@ int main(int argc, char** argv) {
     po.add("loop-additive-signals", &config.reverb.loop_additive_signals,
            "tsrir extension: tile each additive signal from its offset to the end of the reverberant signal; "
            "its power for the SNR is then measured over exactly the samples added");
+    po.add("max-in-memory-duration", &config.max_in_memory_s,
+           "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
+           "with memory independent of their length (same output; a piped input is first copied to a "
+           "temporary file, as is the unscaled output: next to a file output, else in $TMPDIR); 0 = always");
     po.add("snr-reference", &snr_reference,
            "tsrir extension: early = Kaldi's early-reverberation energy, full = the whole reverberant "
            "speech x*h (mean over its N+M-1 samples)");

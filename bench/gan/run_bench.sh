@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# TS-RIRGAN speed and memory: training step time and peak RSS at width 16 and 64 (batch 4), and
-# gas-to-real throughput at width 64 (batched and unbatched). Inputs: the 170 measured R3VIVAL RIRs
+# TS-RIRGAN speed and memory: training step time and peak RSS at width 16 and 64 (batch 4, both
+# decoders at 64), generator forward throughput against the FLOP count (gan_forward_bench), and
+# gas-to-real throughput at width 64 (decoders x precisions, batched and unbatched). Inputs: the 170 measured R3VIVAL RIRs
 # (48 kHz, resampled to 16 kHz by the programs) as both domains; the content does not change the
 # cost. Step times are the median of the logged per-step wall times after the first (warm-up) step.
 # The width-16 step is measured at 1 and at [threads] threads; OPENBLAS_NUM_THREADS=1 (the program
@@ -12,7 +13,7 @@ build=${1:-$here/build-gan}
 threads=${2:-2}
 steps64=${3:-3}
 bin=$build/bin
-for t in ts-rirgan-train gas-to-real; do
+for t in ts-rirgan-train gas-to-real gan_forward_bench; do
   [[ -x $bin/$t ]] || { echo "missing $bin/$t (ninja -C $build $t)" >&2; exit 1; }
 done
 data=$here/../shared/data/rirs/r3vival
@@ -30,16 +31,18 @@ median_step() { awk -F, 'NR>2{print $NF}' "$1" | sort -g | awk '{a[NR]=$1} END{p
 echo "| run | median wall s/step | CPU s/step (process) | peak RSS MB |"
 echo "|---|---|---|---|"
 export OPENBLAS_NUM_THREADS=1
-for spec in "16 12 1" "16 12 $threads" "64 $steps64 $threads"; do
+for spec in "16 12 1 original float32" "16 12 $threads original float32" "16 12 $threads original bfloat16" \
+    "64 $steps64 $threads original float32" "64 $steps64 $threads original bfloat16" "64 $steps64 $threads light float32"; do
   set -- $spec
-  w=$1; s=$2; t=$3
-  m=$work/m${w}_t$t
+  w=$1; s=$2; t=$3; dec=$4; prec=$5
+  m=$work/m${w}_t${t}_$dec
+  [[ $prec == float32 ]] || m=${m}_$prec
   /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$bin/ts-rirgan-train" --real="$work/rir.scp" \
-    --synthetic="$work/rir.scp" --width=$w --batch-size=4 --steps=$s --num-threads=$t \
+    --synthetic="$work/rir.scp" --width=$w --decoder=$dec --precision=$prec --batch-size=4 --steps=$s --num-threads=$t \
     --checkpoint-every=100000 --progress-interval=60 "$m" 2> "$work/log"
   read -r wall user sys rss < "$work/time"
   cpu=$(awk -v u="$user" -v s="$sys" -v n="$s" 'BEGIN{printf "%.3f", (u+s)/n}')
-  echo "| train width $w, batch 4, $t thread(s), $s steps (CPU/step includes loading $n RIRs) | $(median_step "$m/loss_log.csv") | $cpu | $((rss / 1024)) |"
+  echo "| train width $w ($dec decoder, $prec), batch 4, $t thread(s), $s steps (CPU/step includes loading $n RIRs) | $(median_step "$m/loss_log.csv") | $cpu | $((rss / 1024)) |"
 done
 if [[ ${PROFILE:-0} == 1 ]]; then
   perf record -q -o "$work/perf.data" "$bin/ts-rirgan-train" --real="$work/rir.scp" --synthetic="$work/rir.scp" \
@@ -50,13 +53,28 @@ if [[ ${PROFILE:-0} == 1 ]]; then
 fi
 
 echo
-echo "| translation (width 64, $n RIRs) | RIRs/s (wall, excl. model load) | CPU s total | peak RSS MB |"
+echo "generator forward, no I/O (bench/gan/gan_forward_bench.cc; median of 3 passes; GFLOP = 2 x multiply-adds)"
+echo "| width | decoder | batch | threads | precision | M params | GFLOP/RIR | ms/batch | RIRs/s | GFLOP/s |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+for dec in original light; do
+  for prec in float32 bfloat16; do
+    for b in 1 16; do
+      "$bin/gan_forward_bench" --width=64 --decoder=$dec --batch=$b --threads=$threads --precision=$prec --reps=3
+    done
+  done
+done
+
+echo
+echo "| translation (width 64, $n RIRs, --batch-size=16 unless said) | RIRs/s (wall, excl. model load) | CPU s total | peak RSS MB |"
 echo "|---|---|---|---|"
-for b in 16 1; do
-  /usr/bin/time -f "%e %U %S %M" -o "$work/time_t$b" "$bin/gas-to-real" --model="$work/m64_t$threads" \
-    --batch-size=$b --num-threads=$threads "$work/rir.scp" "$work/out$b" 2> "$work/log_t$b"
-  read -r wall user sys rss < "$work/time_t$b"
-  rate=$(grep -o '[0-9.e+]* RIRs/s' "$work/log_t$b" | cut -d' ' -f1)
-  echo "| gas-to-real --batch-size=$b | $rate | $(awk -v u="$user" -v s="$sys" 'BEGIN{printf "%.1f", u+s}') | $((rss / 1024)) |"
+for spec in "original float32 16" "original float32 1" "original bfloat16 16" "light float32 16" "light bfloat16 16"; do
+  set -- $spec
+  dec=$1; prec=$2; b=$3
+  out=$work/out_${dec}_${prec}_$b
+  /usr/bin/time -f "%e %U %S %M" -o "$work/time_t" "$bin/gas-to-real" --model="$work/m64_t${threads}_$dec" \
+    --batch-size=$b --precision=$prec --num-threads=$threads "$work/rir.scp" "$out" 2> "$work/log_t"
+  read -r wall user sys rss < "$work/time_t"
+  rate=$(grep -o '[0-9.e+]* RIRs/s' "$work/log_t" | cut -d' ' -f1)
+  echo "| gas-to-real, $dec-decoder model, --precision=$prec --batch-size=$b | $rate | $(awk -v u="$user" -v s="$sys" 'BEGIN{printf "%.1f", u+s}') | $((rss / 1024)) |"
 done
 echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg)"

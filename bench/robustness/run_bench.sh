@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Scale and memory under hostile sizes: a 2-hour utterance through wav-reverberate and
-# reverberate-data (peak RSS must stay a small multiple of the audio), and 10^5-line lists through
-# reverberate-data, rir-metrics and rir-simulate. Prints one table row per case.
+# reverberate-data (0.5 s RIR; and 1 s RIR plus a looped 7 s noise, the case whose memory must not
+# grow with the utterance: each such row is checked against RSS_LIMIT_MB, default 150, and the
+# streamed wav-reverberate output is compared byte for byte with the in-memory path's), and
+# 10^5-line lists through reverberate-data, rir-metrics and rir-simulate. Prints one table row per
+# case and exits 1 if a check failed (the rir-simulate row's exit=1 is expected: its list's last
+# line repeats an id). COMPARE=0 skips the in-memory reference run (~1.5 GB).
 #
 #   bench/robustness/run_bench.sh [BIN_DIR [HOURS [LIST_LINES [METRICS_RIRS]]]]
 #                                                    (default build/bin 2 100000 10000)
@@ -37,6 +41,13 @@ random.seed(1)
 rir = [0] * 40 + [20000] + [int(3000 * 10 ** (-3 * (i / 16000) / 0.5) * random.gauss(0, 1)) for i in range(8000)]
 with open(os.path.join(work, 'rir.wav'), 'wb') as f:
     f.write(header(len(rir)) + b''.join(struct.pack('<h', max(-32767, min(32767, v))) for v in rir))
+# 1 s RIR (T60 0.6 s) and a 7 s noise (looped over the utterance from an offset).
+rir1 = [0] * 40 + [20000] + [int(3000 * 10 ** (-3 * (i / 16000) / 0.6) * random.gauss(0, 1)) for i in range(15959)]
+with open(os.path.join(work, 'rir1s.wav'), 'wb') as f:
+    f.write(header(len(rir1)) + b''.join(struct.pack('<h', max(-32767, min(32767, v))) for v in rir1))
+noise = [int(2000 * random.gauss(0, 1)) for i in range(7 * 16000)]
+with open(os.path.join(work, 'noise.wav'), 'wb') as f:
+    f.write(header(len(noise)) + b''.join(struct.pack('<h', max(-32767, min(32767, v))) for v in noise))
 with open(os.path.join(work, 'short.wav'), 'wb') as f:
     f.write(header(16000) + sec)
 d = os.path.join(work, 'data')
@@ -44,6 +55,8 @@ open(os.path.join(d, 'wav.scp'), 'w').write('spk1-long %s/long.wav\n' % work)
 open(os.path.join(d, 'utt2spk'), 'w').write('spk1-long spk1\n')
 open(os.path.join(d, 'spk2utt'), 'w').write('spk1 spk1-long\n')
 open(os.path.join(work, 'rir.scp'), 'w').write('r1 %s/rir.wav\n' % work)
+open(os.path.join(work, 'rir1s.scp'), 'w').write('r1 %s/rir1s.wav\n' % work)
+open(os.path.join(work, 'noise_list'), 'w').write('--noise-id n1 --noise-type point-source %s/noise.wav\n' % work)
 b = os.path.join(work, 'big')
 with open(os.path.join(b, 'wav.scp'), 'w') as w, open(os.path.join(b, 'utt2spk'), 'w') as u:
     for i in range(lines):
@@ -59,13 +72,23 @@ with open(os.path.join(work, 'rooms.txt'), 'w') as f:
 PY
 
 audio_mb=$(( $(stat -c %s "$work/long.wav") * 2 / 1000000 ))  # as float32 samples in memory
-printf '%-52s %8s %10s %8s\n' case seconds peak_MB result
+rss_limit_mb=${RSS_LIMIT_MB:-150}
+failed=0
+printf '%-58s %8s %10s %8s\n' case seconds peak_MB result
+# run [--rss-check] NAME COMMAND...: one row; --rss-check flags a peak RSS above RSS_LIMIT_MB.
 run() {
-  local name=$1 rc=0 secs kb
+  local check=0 rc=0 secs kb note
+  if [ "$1" = --rss-check ]; then check=1; shift; fi
+  local name=$1
   shift
   /usr/bin/time -o "$work/time" -f '%e %M' "$@" >/dev/null 2>"$work/err" || rc=$?
   read -r secs kb < <(tail -1 "$work/time")
-  printf '%-52s %8s %10s %8s\n' "$name" "$secs" "$(( kb / 1024 ))" "exit=$rc"
+  note="exit=$rc"
+  if [ "$check" = 1 ]; then
+    [ "$rc" = 0 ] || failed=1
+    if [ $(( kb / 1024 )) -gt "$rss_limit_mb" ]; then note="$note,RSS>${rss_limit_mb}MB"; failed=1; fi
+  fi
+  printf '%-58s %8s %10s %8s\n' "$name" "$secs" "$(( kb / 1024 ))" "$note"
   [ "$rc" = 0 ] || tail -1 "$work/err" | cut -c1-160
 }
 echo "# the ${hours} h utterance is ${audio_mb} MB as float samples"
@@ -73,6 +96,23 @@ run "wav-reverberate, ${hours} h utterance, 0.5 s RIR" "$bin/wav-reverberate" --
   --impulse-response="$work/rir.wav" "$work/long.wav" "$work/long_rvb.wav"
 run "reverberate-data --write-wavs, ${hours} h utterance" "$bin/reverberate-data" --rir-set-parameters "$work/rir.scp" \
   --random-seed=1 --write-wavs="$work/wavs" "$work/data" "$work/data_rvb"
+rm -rf "$work/wavs" "$work/data_rvb" "$work/long_rvb.wav"
+noisy=(--impulse-response="$work/rir1s.wav" --additive-signals="$work/noise.wav" --snrs=10 --start-times=0
+       --additive-offsets=2.5 --loop-additive-signals=true)
+run --rss-check "wav-reverberate, ${hours} h, 1 s RIR, looped noise" "$bin/wav-reverberate" --print-args=false \
+  "${noisy[@]}" "$work/long.wav" "$work/long_noisy.wav"
+if [ "${COMPARE:-1}" = 1 ]; then
+  run "  the same in memory (--max-in-memory-duration=1e9)" "$bin/wav-reverberate" --print-args=false \
+    --max-in-memory-duration=1e9 "${noisy[@]}" "$work/long.wav" "$work/long_noisy_ref.wav"
+  if cmp -s "$work/long_noisy.wav" "$work/long_noisy_ref.wav"; then same=identical; else same=DIFFERENT; failed=1; fi
+  printf '%-58s %8s %10s %8s\n' "  streamed vs in-memory output" - - "$same"
+  rm -f "$work/long_noisy_ref.wav"
+fi
+rm -f "$work/long_noisy.wav"
+run --rss-check "reverberate-data --write-wavs, ${hours} h, 1 s RIR, looped noise" "$bin/reverberate-data" \
+  --rir-set-parameters "$work/rir1s.scp" --noise-set-parameters "$work/noise_list" --random-seed=1 \
+  --write-wavs="$work/wavs" "$work/data" "$work/data_rvb"
+rm -rf "$work/wavs" "$work/data_rvb"
 cp "$work/data/spk2utt" "$work/big/spk2utt" 2>/dev/null || true
 python3 - "$work/big" <<'PY'
 import collections, sys
@@ -86,3 +126,4 @@ run "reverberate-data (pipes), ${lines}-line wav.scp" "$bin/reverberate-data" --
   --random-seed=1 "$work/big" "$work/big_rvb"
 run "rir-metrics, ${metrics_rirs}-line scp" "$bin/rir-metrics" --num-threads="$(nproc)" "$work/big_rir.scp"
 run "rir-simulate, ${lines}-line room list, bad last line" "$bin/rir-simulate" "$work/rooms.txt" "$work/sim"
+[ "$failed" = 0 ] || { echo "# a check failed (exit status, RSS limit or output comparison)"; exit 1; }

@@ -35,6 +35,11 @@ class PreparedRir {
   std::vector<float> convolve_full(const std::vector<float>& x) const { return full_.convolve(x); }
   // Kaldi's early-reverberation energy: mean((x ⊛ h_early)^2) over N + L_early - 1 samples.
   double early_reverb_energy(const std::vector<float>& x) const;
+  // The engines themselves, for the streaming path (reverberate_stream.h): h and the zero-padded
+  // h_early, whose length early_filter_length() is >= early_end() - early_begin().
+  const Convolver& full_convolver() const { return full_; }
+  const Convolver& early_convolver() const { return early_; }
+  size_t early_filter_length() const { return early_.filter_length(); }
 
  private:
   std::vector<float> rir_;

@@ -12,6 +12,7 @@
 
 #include "augment/augment_plan.h"
 #include "augment/augment_sources.h"
+#include "augment/reverberate_stream.h"
 #include "augment/sampling.h"
 #include "augment/wav_reverberate.h"
 #include "io/atomic_output.h"
@@ -213,9 +214,9 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
       if (plan.new_id.find('/') != std::string::npos)
         throw Error("recording id '" + plan.new_id + "' contains '/', which cannot name a wav file");
       const std::string where = in_dir + "/wav.scp: recording '" + plan.source_id + "'";
-      AudioInfo info;
-      std::vector<std::vector<float>> speech = read_audio_channels(plan.source_rx, &info, where);
-      const double rate = info.sample_rate_hz;
+      const std::string wav_path = temp_wav_dir + "/" + plan.new_id + ".wav";
+      SpeechInput speech = open_speech_input(plan.source_rx, options.max_in_memory_s, wav_path + ".input", where);
+      const double rate = speech.on_disk() ? probe_audio(speech.path).sample_rate_hz : speech.info.sample_rate_hz;
       if (options.source_sampling_rate_hz > 0 && rate != options.source_sampling_rate_hz)
         throw Error(where + ": sample rate " + format_double(rate) + " Hz, but --source-sampling-rate is " +
                     format_double(options.source_sampling_rate_hz));
@@ -243,14 +244,27 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
         a.offset_s = plan.noise_offset_s;
         additive.push_back(std::move(a));
       }
-      Signal result;
-      result.id = plan.new_id;
-      result.sample_rate_hz = rate;
-      result.samples = reverberate_channel(speech.at(0), rate, rir.get(), additive, reverb);
       long long clipped_here = 0;
-      AudioWriteOptions write_options;
-      write_options.clipped_samples = &clipped_here;
-      write_wav(temp_wav_dir + "/" + plan.new_id + ".wav", result, write_options);
+      if (!speech.on_disk()) {
+        Signal result;
+        result.id = plan.new_id;
+        result.sample_rate_hz = rate;
+        result.samples = reverberate_channel(speech.channels.at(0), rate, rir.get(), additive, reverb);
+        speech.channels.clear();
+        AudioWriteOptions write_options;
+        write_options.clipped_samples = &clipped_here;
+        write_wav(wav_path, result, write_options);
+      } else {
+        log_info(where + ": longer than " + format_double(options.max_in_memory_s) +
+                 " s: reverberated in passes over the file (memory independent of its length)");
+        StreamChannel channel;
+        channel.rir = rir.get();
+        channel.additive = additive;
+        StreamSettings settings;
+        settings.temp_base = wav_path + ".spill";
+        clipped_here = reverberate_stream(speech.path, where, speech.rx, 0, {channel}, reverb, wav_path, settings)
+                           .clipped_samples;
+      }
       clipped += clipped_here;
       const size_t finished = ++done;
       std::lock_guard<std::mutex> lock(progress_mutex);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "augment/reverberate.h"
+#include "augment/speech_input.h"
 
 namespace tsrir {
 
@@ -29,6 +30,9 @@ struct ReverberateDataOptions {
   std::string write_wavs;                          // "" = pipes in wav.scp
   std::string pipe_program;                        // "" = wav-reverberate next to this program
   int num_threads = 1;
+  // With write_wavs: recordings longer than this (s) are reverberated in passes over the file,
+  // memory independent of their length, same wav (reverberate_stream.h); 0 = all of them.
+  double max_in_memory_s = kDefaultMaxInMemoryDurationS;
 };
 
 struct ReverberateDataSummary {

@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "augment/reverberate_stream.h"
+#include "augment/temp_file.h"
 #include "io/audio_io.h"
 #include "io/shell.h"
 #include "util/cli.h"
@@ -72,13 +74,21 @@ std::vector<std::string> split_comma_list(const std::string& text) {
   return out;
 }
 
-std::vector<std::vector<float>> wav_reverberate_channels(
-    const std::vector<std::vector<float>>& input_channels, double sample_rate_hz,
-    const std::vector<std::vector<float>>& rir_channels,
-    const std::vector<std::vector<std::vector<float>>>& additive_channels,
-    const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
-    const std::vector<double>& offsets_s, const WavReverberateConfig& config) {
-  const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
+namespace {
+
+// What reverberates each output channel: its RIR (absent without one) and additive signals.
+struct OutputChannelSetup {
+  std::unique_ptr<PreparedRir> rir;
+  std::vector<AdditiveSignal> additive;
+};
+
+// Kaldi's channel rules (--multi-channel-output, --rir-channel, --noise-channel), shared by the
+// in-memory and the streaming path.
+std::vector<OutputChannelSetup> setup_output_channels(
+    double sample_rate_hz, const std::vector<std::vector<float>>& rir_channels,
+    const std::vector<std::vector<std::vector<float>>>& additive_channels, const std::vector<double>& snrs_db,
+    const std::vector<double>& start_times_s, const std::vector<double>& offsets_s,
+    const WavReverberateConfig& config) {
   const bool have_rir = !rir_channels.empty();
   const size_t num_out = (config.multi_channel_output && have_rir) ? rir_channels.size() : 1;
   if (config.multi_channel_output && config.rir_channel != 0)
@@ -89,14 +99,15 @@ std::vector<std::vector<float>> wav_reverberate_channels(
                   " channels but the impulse response has " + std::to_string(num_out) +
                   " (--multi-channel-output=true needs them equal)");
   }
-  std::vector<std::vector<float>> outputs(num_out);
+  std::vector<OutputChannelSetup> setups(num_out);
   for (size_t c = 0; c < num_out; ++c) {
-    std::unique_ptr<PreparedRir> rir;
     if (have_rir) {
       const int rir_index = config.multi_channel_output ? static_cast<int>(c) : config.rir_channel;
-      rir = std::make_unique<PreparedRir>(channel_of(rir_channels, rir_index, "impulse response"), sample_rate_hz);
+      setups[c].rir =
+          std::make_unique<PreparedRir>(channel_of(rir_channels, rir_index, "impulse response"), sample_rate_hz);
     }
-    std::vector<AdditiveSignal> additive(additive_channels.size());
+    std::vector<AdditiveSignal>& additive = setups[c].additive;
+    additive.resize(additive_channels.size());
     for (size_t i = 0; i < additive_channels.size(); ++i) {
       const int noise_index = (config.multi_channel_output && have_rir) ? static_cast<int>(c) : config.noise_channel;
       additive[i].samples = std::make_shared<const std::vector<float>>(
@@ -105,8 +116,24 @@ std::vector<std::vector<float>> wav_reverberate_channels(
       additive[i].start_time_s = start_times_s.at(i);
       additive[i].offset_s = offsets_s.empty() ? 0.0 : offsets_s.at(i);
     }
-    outputs[c] = reverberate_channel(input, sample_rate_hz, rir.get(), additive, config.reverb);
   }
+  return setups;
+}
+
+}  // namespace
+
+std::vector<std::vector<float>> wav_reverberate_channels(
+    const std::vector<std::vector<float>>& input_channels, double sample_rate_hz,
+    const std::vector<std::vector<float>>& rir_channels,
+    const std::vector<std::vector<std::vector<float>>>& additive_channels,
+    const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
+    const std::vector<double>& offsets_s, const WavReverberateConfig& config) {
+  const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
+  const std::vector<OutputChannelSetup> setups = setup_output_channels(
+      sample_rate_hz, rir_channels, additive_channels, snrs_db, start_times_s, offsets_s, config);
+  std::vector<std::vector<float>> outputs(setups.size());
+  for (size_t c = 0; c < setups.size(); ++c)
+    outputs[c] = reverberate_channel(input, sample_rate_hz, setups[c].rir.get(), setups[c].additive, config.reverb);
   return outputs;
 }
 
@@ -129,9 +156,9 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
     throw Error("--additive-offsets given without --additive-signals");
   }
 
-  AudioInfo input_info;
-  std::vector<std::vector<float>> input = read_audio_channels(input_rx, &input_info, "input");
-  const double fs = input_info.sample_rate_hz;
+  SpeechInput input =
+      open_speech_input(input_rx, config.max_in_memory_s, temp_base_for_output(output_wx, "input"), "input");
+  const double fs = input.on_disk() ? probe_audio(input.path).sample_rate_hz : input.info.sample_rate_hz;
 
   // Kaldi never checks the RIR's rate; applying a 48 kHz RIR to 16 kHz speech sample by sample
   // would stretch the room 3x, so RIRs (like additive signals) are resampled to the speech's rate.
@@ -141,12 +168,32 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
   std::vector<std::vector<std::vector<float>>> additive;
   for (const std::string& rx : additive_rx)
     additive.push_back(read_channels_at_rate(rx, fs, "--additive-signals"));
-  std::vector<std::vector<float>> output =
-      wav_reverberate_channels(input, fs, rir, additive, snrs, start_times, offsets, config);
   long long clipped = 0;
-  write_output(output_wx, output, fs, &clipped);
+  size_t total = 0;
+  if (!input.on_disk()) {
+    std::vector<std::vector<float>> output =
+        wav_reverberate_channels(input.channels, fs, rir, additive, snrs, start_times, offsets, config);
+    input.channels.clear();
+    write_output(output_wx, output, fs, &clipped);
+    total = output.size() * output[0].size();
+  } else {
+    const std::vector<OutputChannelSetup> setups =
+        setup_output_channels(fs, rir, additive, snrs, start_times, offsets, config);
+    std::vector<StreamChannel> channels(setups.size());
+    for (size_t c = 0; c < setups.size(); ++c) {
+      channels[c].rir = setups[c].rir.get();
+      channels[c].additive = setups[c].additive;
+    }
+    log_info(trim(input_rx) + ": longer than " + format_double(config.max_in_memory_s) +
+             " s: reverberated in passes over the file (memory independent of its length)");
+    StreamSettings settings;
+    settings.temp_base = temp_base_for_output(output_wx, "spill");
+    const StreamResult result = reverberate_stream(input.path, "input", input.rx, config.input_wave_channel, channels,
+                                                   config.reverb, output_wx, settings);
+    clipped = result.clipped_samples;
+    total = result.frames * static_cast<size_t>(result.channels);
+  }
   if (clipped > 0) {
-    size_t total = output.size() * output[0].size();
     log_warning("clipped " + std::to_string(clipped) + " samples out of total " + std::to_string(total) +
                 ". Reduce volume?");
   }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "augment/reverberate.h"
+#include "augment/speech_input.h"
 
 namespace tsrir {
 
@@ -20,6 +21,9 @@ struct WavReverberateConfig {
   int rir_channel = 0;
   int noise_channel = 0;
   ReverbOptions reverb;
+  // Inputs longer than this (s) are reverberated in passes over the file, with memory bounded
+  // independently of their length and the same output (reverberate_stream.h); 0 = every input.
+  double max_in_memory_s = kDefaultMaxInMemoryDurationS;
 };
 
 // All channels of an rxfilename, resampled (libsox) to `sample_rate_hz` when their rate differs.
@@ -32,7 +36,9 @@ std::vector<std::string> split_comma_list(const std::string& text);
 
 // Reads `input_rx`, reverberates every output channel and writes `output_wx` ("-" = stdout,
 // "| command" = a pipe, else a file written atomically) as 16-bit PCM. Errors name the offending
-// option or file. Returns the number of clipped samples (also logged as a warning).
+// option or file. Returns the number of clipped samples (also logged as a warning). An input
+// longer than config.max_in_memory_s is streamed; its temporaries go next to a file output,
+// else to $TMPDIR (default /tmp), and are removed on success, error and interruption.
 long long run_wav_reverberate(const WavReverberateConfig& config, const std::string& input_rx,
                               const std::string& output_wx);
 

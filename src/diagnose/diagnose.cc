@@ -126,7 +126,7 @@ void recheck_modes_after_band_refit(SetObservations& obs, const DiagnoseOptions&
 }  // namespace
 
 Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vector<Signal>& measured_in,
-                       const DiagnoseOptions& options) {
+                       const DiagnoseOptions& options, const std::vector<std::string>& measured_where) {
   const auto start = std::chrono::steady_clock::now();
   sim::register_extension_components();
   const sim::Model baseline = sim::Model::parse(options.baseline_model);
@@ -154,7 +154,17 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
   log_info("simulating and analysing " + std::to_string(n) + " RIRs (baseline '" + options.baseline_model +
            "', 2 seeds)");
   parallel_for(n, options.num_threads, [&](size_t i) {
-    Signal m = resample(measured_in[i], options.sample_rate_hz);
+    // Errors of the measured RIR's analysis name it by id only; the user needs the list line
+    // and the file.
+    auto about_measured = [&](const Error& e) {
+      return i < measured_where.size() ? Error(measured_where[i] + ": " + e.what()) : e;
+    };
+    Signal m;
+    try {
+      m = resample(measured_in[i], options.sample_rate_hz);
+    } catch (const Error& e) {
+      throw about_measured(e);
+    }
     m.id = measured_in[i].id;
     const sim::RoomSpec& room = obs.rooms[i];
     const sim::RoomSpec prepared = baseline.prepare_room(room);
@@ -165,7 +175,11 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
     }
     const Signal a = baseline.render(room, options.sample_rate_hz, m.size(), options.seed);
     const Signal b = baseline.render(room, options.sample_rate_hz, m.size(), options.seed + 1);
-    obs.meas[i] = compute_features(m, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
+    try {
+      obs.meas[i] = compute_features(m, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
+    } catch (const Error& e) {
+      throw about_measured(e);
+    }
     obs.sim_a[i] = compute_features(a, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
     obs.sim_b[i] = compute_features(b, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
     obs.echo_density_meas_a[i] = cross_equalised_echo_density(m, obs.meas[i].onset_s, a, obs.sim_a[i].onset_s);

@@ -55,9 +55,11 @@ struct Diagnosis {
 };
 
 // Measured RIRs (any rate; resampled) paired with their stated set-ups by id. Every measured
-// id needs a room; rooms without a measurement are ignored.
+// id needs a room; rooms without a measurement are ignored. `measured_where` (optional, one per
+// measured RIR: where it was listed) prefixes the error of a measured RIR that cannot be
+// analysed (silent, too short).
 Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vector<Signal>& measured,
-                       const DiagnoseOptions& options);
+                       const DiagnoseOptions& options, const std::vector<std::string>& measured_where = {});
 
 // findings.json, report.html and extended_models (<room-id> <model spec> per line) into out_dir
 // (replaced atomically); returns the stdout summary.

@@ -16,6 +16,9 @@ class Convolver {
  public:
   explicit Convolver(const std::vector<float>& h);
   size_t filter_length() const { return m_; }
+  // Outputs per overlap-save block (0 for a tiny filter, convolved directly): a caller that feeds
+  // pieces starting on multiples of it gets the same rounding as one whole-signal call.
+  size_t block_length() const { return block_; }
   std::vector<float> convolve(const std::vector<float>& x) const;  // full, N + M - 1
 
  private:

@@ -41,16 +41,39 @@ PlanPair get_plans(size_t n) {
   return p;
 }
 
-struct AlignedFloats {
-  explicit AlignedFloats(size_t n) : p(fftwf_alloc_real(n)) {}
-  ~AlignedFloats() { fftwf_free(p); }
-  float* p;
+// Per-thread SIMD-aligned scratch, grown on demand and kept: allocating fresh buffers per call
+// made every large transform pay mmap, page faults and munmap (glibc serves >128 KiB from mmap).
+struct Scratch {
+  float* real = nullptr;
+  fftwf_complex* bins = nullptr;
+  size_t real_size = 0, bins_size = 0;
+  ~Scratch() {
+    fftwf_free(real);
+    fftwf_free(bins);
+  }
+  float* reals(size_t n) {
+    if (n > real_size) {
+      fftwf_free(real);
+      real = fftwf_alloc_real(n);
+      if (!real) throw Error("FFTW: out of memory for a transform of size " + std::to_string(n));
+      real_size = n;
+    }
+    return real;
+  }
+  fftwf_complex* complexes(size_t n) {
+    if (n > bins_size) {
+      fftwf_free(bins);
+      bins = fftwf_alloc_complex(n);
+      if (!bins) throw Error("FFTW: out of memory for a transform of size " + std::to_string(n));
+      bins_size = n;
+    }
+    return bins;
+  }
 };
-struct AlignedComplex {
-  explicit AlignedComplex(size_t n) : p(fftwf_alloc_complex(n)) {}
-  ~AlignedComplex() { fftwf_free(p); }
-  fftwf_complex* p;
-};
+thread_local Scratch t_scratch;
+
+// New-array execution needs the planning-time alignment (fftwf_alloc's, i.e. 0).
+bool simd_aligned(const void* p) { return fftwf_alignment_of(static_cast<float*>(const_cast<void*>(p))) == 0; }
 
 }  // namespace
 
@@ -71,22 +94,32 @@ RealFft::RealFft(size_t n) : n_(n) {
   plan_inverse_ = p.inverse;
 }
 
-// New-array execution requires the same alignment as at planning time; fftwf_alloc gives SIMD
-// alignment, so we always go through aligned scratch buffers.
+// Aligned caller arrays are used in place; others go through the thread's scratch. r2c keeps
+// its input (FFTW_PRESERVE_INPUT is the default for r2c), so a const input can be passed as is.
 void RealFft::forward(const float* in, std::complex<float>* out) const {
-  AlignedFloats a(n_);
-  AlignedComplex b(n_ / 2 + 1);
-  std::memcpy(a.p, in, n_ * sizeof(float));
-  fftwf_execute_dft_r2c(static_cast<fftwf_plan>(plan_forward_), a.p, b.p);
-  std::memcpy(static_cast<void*>(out), b.p, (n_ / 2 + 1) * sizeof(fftwf_complex));
+  const size_t bins = n_ / 2 + 1;
+  float* src = const_cast<float*>(in);
+  if (!simd_aligned(in)) {
+    src = t_scratch.reals(n_);
+    std::memcpy(src, in, n_ * sizeof(float));
+  }
+  auto* dst = reinterpret_cast<fftwf_complex*>(out);
+  const bool direct_out = simd_aligned(out);
+  if (!direct_out) dst = t_scratch.complexes(bins);
+  fftwf_execute_dft_r2c(static_cast<fftwf_plan>(plan_forward_), src, dst);
+  if (!direct_out) std::memcpy(static_cast<void*>(out), dst, bins * sizeof(fftwf_complex));
 }
 
+// c2r destroys its input, so the caller's spectrum is always copied first.
 void RealFft::inverse(const std::complex<float>* in, float* out) const {
-  AlignedComplex a(n_ / 2 + 1);
-  AlignedFloats b(n_);
-  std::memcpy(a.p, static_cast<const void*>(in), (n_ / 2 + 1) * sizeof(fftwf_complex));
-  fftwf_execute_dft_c2r(static_cast<fftwf_plan>(plan_inverse_), a.p, b.p);
-  std::memcpy(out, b.p, n_ * sizeof(float));
+  const size_t bins = n_ / 2 + 1;
+  fftwf_complex* src = t_scratch.complexes(bins);
+  std::memcpy(static_cast<void*>(src), static_cast<const void*>(in), bins * sizeof(fftwf_complex));
+  float* dst = out;
+  const bool direct_out = simd_aligned(out);
+  if (!direct_out) dst = t_scratch.reals(n_);
+  fftwf_execute_dft_c2r(static_cast<fftwf_plan>(plan_inverse_), src, dst);
+  if (!direct_out) std::memcpy(out, dst, n_ * sizeof(float));
 }
 
 std::vector<std::complex<float>> rfft(const std::vector<float>& x, size_t n) {

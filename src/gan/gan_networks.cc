@@ -151,7 +151,8 @@ torch::Tensor SameConvTranspose1dImpl::forward(const torch::Tensor& x) {
   const int64_t batch = x.size(0), length = x.size(2), in = weight.size(0);
   const torch::Tensor w_ext = torch::constant_pad_nd(weight, {0, 1}, 0.0);  // tap k = 0
   const torch::Tensor phase_kernels =
-      w_ext.index_select(2, phase_index_)
+      // Module::to(dtype) casts buffers too, integer ones included: cast the index back.
+      w_ext.index_select(2, phase_index_.to(torch::kLong))
           .view({in, out_channels_, stride_, phase_taps_})
           .permute({2, 1, 0, 3})
           .reshape({stride_ * out_channels_, in, phase_taps_});
@@ -162,7 +163,7 @@ torch::Tensor SameConvTranspose1dImpl::forward(const torch::Tensor& x) {
       .reshape({batch, out_channels_, stride_ * length});
 }
 
-GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init) {
+GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const std::string& decoder) {
   const int w = width;
   const int down_channels[9][2] = {{1, w},         {w, 2 * w},     {2 * w, 4 * w},
                                    {4 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w},
@@ -172,8 +173,10 @@ GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init) {
                                     SameConv1d(down_channels[i][0], down_channels[i][1], kernel_length,
                                                i < 4 ? 4 : 1, init)));
   }
-  // The original's comments say 256/128/64 on the way up; its code uses dim * 16, 8, 4.
-  const int up_channels[4][2] = {{8 * w, 16 * w}, {16 * w, 8 * w}, {8 * w, 4 * w}, {4 * w, 1}};
+  // The original's comments say 256/128/64 on the way up ("light"); its code uses dim * 16, 8, 4.
+  int m[3];
+  decoder_multipliers(decoder, m);
+  const int up_channels[4][2] = {{8 * w, m[0] * w}, {m[0] * w, m[1] * w}, {m[1] * w, m[2] * w}, {m[2] * w, 1}};
   for (int i = 0; i < 4; ++i) {
     up_.push_back(register_module("upconv_" + std::to_string(i + 1),
                                   SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4, init)));
@@ -225,8 +228,8 @@ void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
 CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   // Construction order fixes which random numbers each network's initialiser draws.
   const InitKind init = parse_init_kind(s.init);
-  g_real = Generator(s.width, s.kernel_length, init);
-  g_synthetic = Generator(s.width, s.kernel_length, init);
+  g_real = Generator(s.width, s.kernel_length, init, s.decoder);
+  g_synthetic = Generator(s.width, s.kernel_length, init, s.decoder);
   d_real = Discriminator(s.width, s.kernel_length, init);
   d_synthetic = Discriminator(s.width, s.kernel_length, init);
   torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
@@ -307,7 +310,7 @@ Generator load_generator(const std::string& path, const std::string& name, GanSe
   torch::serialize::InputArchive archive;
   open_archive(path, archive);
   *settings = archive_settings(archive, path);
-  Generator generator(settings->width, settings->kernel_length);
+  Generator generator(settings->width, settings->kernel_length, InitKind::kGlorot, settings->decoder);
   for (auto& item : generator->named_parameters()) {
     read_into(archive, archive_key(name, item.key()), item.value(), path);
   }

@@ -52,11 +52,13 @@ class SameConvTranspose1dImpl : public torch::nn::Module {
 TORCH_MODULE(SameConvTranspose1d);
 
 // G_SR / G_RS: 4 strided convs (w, 2w, 4w, 8w), 5 stride-1 convs (8w), 3 transposed convs
-// (16w, 8w, 4w) and a transposed conv to 1 channel with tanh; ReLU elsewhere; no normalisation
-// and no skip connections. Input and output [B, 1, 16384].
+// (16w, 8w, 4w for decoder "original"; 4w, 2w, w for "light") and a transposed conv to 1 channel
+// with tanh; ReLU elsewhere; no normalisation and no skip connections. Input and output
+// [B, 1, 16384].
 class GeneratorImpl : public torch::nn::Module {
  public:
-  GeneratorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot);
+  GeneratorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot,
+                const std::string& decoder = "original");
   torch::Tensor forward(torch::Tensor x);
 
  private:
@@ -90,6 +92,7 @@ class TfRmsProp {
   void step(const std::vector<torch::Tensor>& grads);
   std::vector<torch::Tensor>& mean_square() { return mean_square_; }
   const std::vector<torch::Tensor>& params() const { return params_; }
+  void set_learning_rate(double learning_rate) { learning_rate_ = learning_rate; }
 
  private:
   std::vector<torch::Tensor> params_, mean_square_;

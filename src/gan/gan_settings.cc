@@ -1,5 +1,7 @@
 #include "gan/gan_settings.h"
 
+#include <cerrno>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -10,7 +12,18 @@
 namespace tsrir {
 namespace {
 constexpr const char* kFormatTag = "tsrir-ts-rirgan-settings-v1";
+
+// Seeds are unsigned 64-bit (any --seed the command line accepts must read back).
+uint64_t parse_seed(const std::string& text, const std::string& context) {
+  if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos) {
+    throw Error(context + ": expected an unsigned integer, got '" + text + "'");
+  }
+  errno = 0;
+  const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) throw Error(context + ": seed out of range: '" + text + "'");
+  return uint64_t(v);
 }
+}  // namespace
 
 std::string gan_settings_text(const GanSettings& s) {
   std::ostringstream os;
@@ -18,15 +31,18 @@ std::string gan_settings_text(const GanSettings& s) {
      << "width " << s.width << "\n"
      << "kernel_length " << s.kernel_length << "\n"
      << "slice_length " << s.slice_length << "\n"
-     << "sample_rate_hz " << format_double(s.sample_rate_hz, 10) << "\n"
+     << "sample_rate_hz " << format_double(s.sample_rate_hz, 17) << "\n"
      << "batch_size " << s.batch_size << "\n"
      << "seed " << s.seed << "\n"
-     << "learning_rate " << format_double(s.learning_rate, 10) << "\n"
+     << "learning_rate " << format_double(s.learning_rate, 17) << "\n"
      << "disc_updates " << s.disc_updates << "\n"
      << "init " << s.init << "\n"
-     << "cycle_weight " << format_double(s.cycle_weight, 10) << "\n"
-     << "identity_weight " << format_double(s.identity_weight, 10) << "\n"
-     << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 10) << "\n"
+     << "cycle_weight " << format_double(s.cycle_weight, 17) << "\n"
+     << "identity_weight " << format_double(s.identity_weight, 17) << "\n"
+     << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 17) << "\n"
+     << "decoder " << s.decoder << "\n"
+     << "precision " << s.precision << "\n"
+     << "warmup_steps " << s.warmup_steps << "\n"
      << "real_list " << s.real_list << "\n"
      << "synthetic_list " << s.synthetic_list << "\n";
   return os.str();
@@ -60,7 +76,7 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
     } else if (key == "batch_size") {
       s.batch_size = int(parse_int(value, ctx));
     } else if (key == "seed") {
-      s.seed = uint64_t(parse_int(value, ctx));
+      s.seed = parse_seed(value, ctx);
     } else if (key == "learning_rate") {
       s.learning_rate = parse_double(value, ctx);
     } else if (key == "disc_updates") {
@@ -74,6 +90,15 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
       s.identity_weight = parse_double(value, ctx);
     } else if (key == "rmsprop_initial_ms") {
       s.rmsprop_initial_ms = parse_double(value, ctx);
+    } else if (key == "decoder") {
+      if (value != "original" && value != "light") throw Error(ctx + ": decoder must be original or light");
+      s.decoder = value;
+    } else if (key == "warmup_steps") {
+      s.warmup_steps = parse_int(value, ctx);
+      if (s.warmup_steps < 0) throw Error(ctx + ": warmup_steps must be >= 0");
+    } else if (key == "precision") {
+      if (value != "float32" && value != "bfloat16") throw Error(ctx + ": precision must be float32 or bfloat16");
+      s.precision = value;
     } else if (key == "real_list") {
       s.real_list = value;
     } else if (key == "synthetic_list") {
@@ -88,6 +113,16 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
                                       ", slice " + std::to_string(s.slice_length) + ")"));
   }
   return s;
+}
+
+void decoder_multipliers(const std::string& decoder, int multipliers[3]) {
+  if (decoder == "original") {
+    multipliers[0] = 16, multipliers[1] = 8, multipliers[2] = 4;
+  } else if (decoder == "light") {
+    multipliers[0] = 4, multipliers[1] = 2, multipliers[2] = 1;
+  } else {
+    throw Error("--decoder must be original or light, got '" + decoder + "'");
+  }
 }
 
 GanSettings read_gan_settings_file(const std::string& path) {
@@ -107,10 +142,12 @@ void write_gan_settings_file(const std::string& path, const GanSettings& setting
 void check_same_architecture(const GanSettings& expected, const GanSettings& found,
                              const std::string& what) {
   if (expected.width != found.width || expected.kernel_length != found.kernel_length ||
-      expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz) {
-    throw Error(what + ": model width " + std::to_string(found.width) + " (kernel " +
-                std::to_string(found.kernel_length) + "), expected width " +
-                std::to_string(expected.width) + " (kernel " + std::to_string(expected.kernel_length) + ")");
+      expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz ||
+      expected.decoder != found.decoder) {
+    throw Error(what + ": model width " + std::to_string(found.width) + " (decoder " + found.decoder +
+                ", kernel " + std::to_string(found.kernel_length) + "), expected width " +
+                std::to_string(expected.width) + " (decoder " + expected.decoder + ", kernel " +
+                std::to_string(expected.kernel_length) + ")");
   }
 }
 

@@ -21,9 +21,20 @@ struct GanSettings {
   double cycle_weight = 250.0;     // per cycle L1 term (10 * 25)
   double identity_weight = 175.0;  // identity L1 (5 * 35)
   double rmsprop_initial_ms = 1.0;  // RMSProp's initial mean square: 1 (TF, the original) or 0
+  // Generator up-path channels: "original" (16w, 8w, 4w: the original's code, 66.6 M parameters
+  // per generator at width 64) or "light" (4w, 2w, w: what the original's code comments say,
+  // 41.4 M parameters and 1/3 of the FLOPs at width 64). Part of the architecture.
+  std::string decoder = "original";
+  // Linear learning-rate warm-up over the first N steps (0: none, the original).
+  long long warmup_steps = 0;
+  std::string precision = "float32";  // training arithmetic: "float32" | "bfloat16" (autocast)
   std::string real_list;
   std::string synthetic_list;
 };
+
+// Width multipliers of the generator's first three transposed convs for `decoder` (Error if the
+// name is neither "original" nor "light").
+void decoder_multipliers(const std::string& decoder, int multipliers[3]);
 
 std::string gan_settings_text(const GanSettings& settings);
 // `where` names the file for errors (unknown key, bad value, wrong format version).
@@ -32,7 +43,7 @@ GanSettings read_gan_settings_file(const std::string& path);
 void write_gan_settings_file(const std::string& path, const GanSettings& settings);  // atomic
 
 // Errors with a clear message if a resumed run or a loaded checkpoint does not match the model
-// its settings describe (width, kernel, slice, rate); `what` names the two sides.
+// its settings describe (width, decoder, kernel, slice, rate); `what` names the two sides.
 void check_same_architecture(const GanSettings& expected, const GanSettings& found,
                              const std::string& what);
 

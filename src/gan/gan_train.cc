@@ -1,5 +1,8 @@
 // The TS-RIRGAN training loop (spec-digest §3.4-3.5): per iteration, disc_updates x [D_R step,
 // D_S step], then a G_SR step and a G_RS step, each on a fresh pair of batches.
+#include <algorithm>
+#include <ATen/autocast_mode.h>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -123,12 +126,40 @@ void apply(gan::TfRmsProp& optimizer, const torch::Tensor& loss) {
   optimizer.step(torch::autograd::grad({loss}, optimizer.params()));
 }
 
+// --precision=bfloat16: the forward passes run under CPU autocast (convolutions and the dense
+// layer in bfloat16 with float32 accumulation; weights, gradients, optimiser state and the losses
+// stay float32). The scope ends before the gradients are taken.
+class AutocastScope {
+ public:
+  explicit AutocastScope(bool enabled) : enabled_(enabled) {
+    if (!enabled_) return;
+    previous_ = at::autocast::is_cpu_enabled();
+    at::autocast::set_autocast_cpu_dtype(at::kBFloat16);
+    at::autocast::set_cpu_enabled(true);
+  }
+  ~AutocastScope() {
+    if (!enabled_) return;
+    at::autocast::set_cpu_enabled(previous_);
+    at::autocast::clear_cache();
+  }
+
+ private:
+  bool enabled_;
+  bool previous_ = false;
+};
+
 class Trainer {
  public:
   Trainer(CycleGan& model, BatchSampler& real, BatchSampler& synthetic, torch::Device device)
-      : m_(model), real_(real), synthetic_(synthetic), device_(device) {}
+      : m_(model), real_(real), synthetic_(synthetic), device_(device),
+        bfloat16_(model.settings.precision == "bfloat16") {}
 
   StepLosses step(long long step_number) {
+    // RMSProp normalises each update by its running gradient scale, so without history (ms0 = 0)
+    // the first updates move every weight by ~lr whatever the gradient: the warm-up tames them.
+    const long long warmup = m_.settings.warmup_steps;
+    const double rate = m_.settings.learning_rate * (warmup > 0 ? std::min(1.0, double(step_number) / double(warmup)) : 1.0);
+    for (auto& optimizer : m_.optimizers) optimizer.set_learning_rate(rate);
     const int draws = 2 * m_.settings.disc_updates + 2;
     long long draw = (step_number - 1) * draws;
     StepLosses L;
@@ -154,13 +185,17 @@ class Trainer {
     auto [x_real, x_synthetic] = batches(draw);
     const torch::Tensor& own = real_side ? x_real : x_synthetic;
     const torch::Tensor& other = real_side ? x_synthetic : x_real;
-    torch::Tensor fake;
+    torch::Tensor loss;
     {
-      torch::NoGradGuard no_grad;
-      fake = g->forward(other);
+      AutocastScope autocast(bfloat16_);
+      torch::Tensor fake;
+      {
+        torch::NoGradGuard no_grad;
+        fake = g->forward(other);
+      }
+      loss = kDiscriminatorWeight * ((d->forward(own).to(torch::kFloat) - 1.0).pow(2).mean() +
+                                     d->forward(fake).to(torch::kFloat).pow(2).mean());
     }
-    torch::Tensor loss =
-        kDiscriminatorWeight * ((d->forward(own) - 1.0).pow(2).mean() + d->forward(fake).pow(2).mean());
     const double value = checked(loss, name);
     apply(optimizer, loss);
     return value;
@@ -176,23 +211,27 @@ class Trainer {
     gan::Discriminator& d = real_side ? m_.d_real : m_.d_synthetic;
     const torch::Tensor& source = real_side ? x_synthetic : x_real;   // translated by g
     const torch::Tensor& target = real_side ? x_real : x_synthetic;   // g's own domain
-    torch::Tensor back;
+    torch::Tensor adv, cycle_source, cycle_target, identity, loss;
     {
-      torch::NoGradGuard no_grad;
-      back = f->forward(target);  // for target -> f -> g, where only g is differentiated
+      AutocastScope autocast(bfloat16_);
+      torch::Tensor back;
+      {
+        torch::NoGradGuard no_grad;
+        back = f->forward(target);  // for target -> f -> g, where only g is differentiated
+      }
+      const int64_t b = source.size(0);
+      // One batched pass of g over [source; f(target); target].
+      const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
+      const torch::Tensor translated = out.narrow(0, 0, b);
+      const torch::Tensor out_float = out.to(torch::kFloat);
+      const torch::Tensor target_cycled = out_float.narrow(0, b, b);
+      const torch::Tensor target_same = out_float.narrow(0, 2 * b, b);
+      adv = (d->forward(translated).to(torch::kFloat) - 1.0).pow(2).mean();
+      cycle_source = (source - f->forward(translated).to(torch::kFloat)).abs().mean();
+      cycle_target = (target - target_cycled).abs().mean();
+      identity = (target - target_same).abs().mean();
+      loss = adv + m_.settings.cycle_weight * (cycle_source + cycle_target) + m_.settings.identity_weight * identity;
     }
-    const int64_t b = source.size(0);
-    // One batched pass of g over [source; f(target); target].
-    const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
-    const torch::Tensor translated = out.narrow(0, 0, b);
-    const torch::Tensor target_cycled = out.narrow(0, b, b);
-    const torch::Tensor target_same = out.narrow(0, 2 * b, b);
-    const torch::Tensor adv = (d->forward(translated) - 1.0).pow(2).mean();
-    const torch::Tensor cycle_source = (source - f->forward(translated)).abs().mean();
-    const torch::Tensor cycle_target = (target - target_cycled).abs().mean();
-    const torch::Tensor identity = (target - target_same).abs().mean();
-    const torch::Tensor loss = adv + m_.settings.cycle_weight * (cycle_source + cycle_target) +
-                               m_.settings.identity_weight * identity;
     const double total = checked(loss, real_side ? "G_real" : "G_synthetic");
     apply(m_.optimizers[real_side ? 0 : 1], loss);
     if (real_side) {
@@ -212,6 +251,7 @@ class Trainer {
   BatchSampler& real_;
   BatchSampler& synthetic_;
   torch::Device device_;
+  bool bfloat16_;
 };
 
 bool parameters_finite(CycleGan& model) {
@@ -270,13 +310,20 @@ void validate(const GanTrainOptions& o) {
   if (o.disc_updates < 1) throw Error("--disc-updates must be >= 1");
   if (!(o.learning_rate > 0) || !std::isfinite(o.learning_rate)) throw Error("--learning-rate must be > 0");
   gan::parse_init_kind(o.init);
+  int multipliers[3];
+  decoder_multipliers(o.decoder, multipliers);
   if (o.rmsprop_initial_ms != 0.0 && o.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
   if (!(o.cycle_weight >= 0) || !std::isfinite(o.cycle_weight)) throw Error("--cycle-weight must be >= 0");
   if (!(o.identity_weight >= 0) || !std::isfinite(o.identity_weight)) throw Error("--identity-weight must be >= 0");
+  if (o.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
+  if (o.precision != "float32" && o.precision != "bfloat16") {
+    throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
+  }
+  if (o.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
 }
 
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
-  check_same_architecture(saved, asked, where + " (give the --width it was trained with)");
+  check_same_architecture(saved, asked, where + " (give the --width and --decoder it was trained with)");
   std::string diff;
   if (saved.batch_size != asked.batch_size) diff += " --batch-size=" + std::to_string(saved.batch_size);
   if (saved.seed != asked.seed) diff += " --seed=" + std::to_string(saved.seed);
@@ -285,6 +332,8 @@ void check_resume_settings(const GanSettings& saved, const GanSettings& asked, c
   if (saved.identity_weight != asked.identity_weight) {
     diff += " --identity-weight=" + format_double(saved.identity_weight, 10);
   }
+  if (saved.warmup_steps != asked.warmup_steps) diff += " --warmup-steps=" + std::to_string(saved.warmup_steps);
+  if (saved.precision != asked.precision) diff += " --precision=" + saved.precision;
   if (!diff.empty()) {
     throw Error(where + ": the model was trained with" + diff + "; --resume continues exactly, so give the same settings (only --learning-rate may change)");
   }
@@ -301,6 +350,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
 
   GanSettings settings;
   settings.width = o.width;
+  settings.decoder = o.decoder;
   settings.batch_size = o.batch_size;
   settings.seed = o.seed;
   settings.learning_rate = o.learning_rate;
@@ -309,6 +359,8 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   settings.cycle_weight = o.cycle_weight;
   settings.identity_weight = o.identity_weight;
   settings.rmsprop_initial_ms = o.rmsprop_initial_ms;
+  settings.precision = o.precision;
+  settings.warmup_steps = o.warmup_steps;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
 
@@ -350,7 +402,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     if (!fs::is_directory(o.model_dir)) throw Error("cannot create model dir " + o.model_dir);
     write_gan_settings_file(settings_path, settings);
     truncate_loss_log(log_path, 0);
-    log_info("model width " + std::to_string(o.width) + ": " +
+    log_info("model width " + std::to_string(o.width) + ", decoder " + o.decoder + ": " +
              std::to_string(gan::count_parameters(*model.g_real)) + " parameters per generator, " +
              std::to_string(gan::count_parameters(*model.d_real)) + " per discriminator");
   }

@@ -35,6 +35,10 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   } else {
     throw Error("--direction must be synthetic-to-real or real-to-synthetic, got '" + o.direction + "'");
   }
+  if (o.precision != "float32" && o.precision != "bfloat16") {
+    throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
+  }
+  const torch::ScalarType dtype = o.precision == "bfloat16" ? torch::kBFloat16 : torch::kFloat32;
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
   const torch::Device device = gan::parse_device(o.device);
@@ -57,6 +61,7 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
     check_same_architecture(read_gan_settings_file(dir_settings), settings, checkpoint + " vs " + dir_settings);
   }
   generator->to(device);
+  generator->to(dtype);
   generator->eval();
   result.model_load_s = std::chrono::duration<double>(Clock::now() - t0).count();
   log_info("loaded " + network + " (width " + std::to_string(settings.width) + ", step " +
@@ -81,7 +86,8 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
       std::memcpy(x[i].data_ptr<float>(), inputs[i].samples.data(), kGanSliceLength * sizeof(float));
       cropped += inputs[i].cropped;
     }
-    const torch::Tensor y = generator->forward(x.to(device)).to(torch::kCPU).contiguous();
+    const torch::Tensor y =
+        generator->forward(x.to(device).to(dtype)).to(torch::kCPU).to(torch::kFloat32).contiguous();
     for (size_t i = 0; i < n; ++i) {
       const float* out = y[i].data_ptr<float>();
       Signal rir;

@@ -62,14 +62,13 @@ std::string format_name(int format) {
   return out;
 }
 
-// Reads all frames from an open handle; checks truncation, emptiness and finiteness.
-std::vector<std::vector<float>> read_all(SNDFILE* f, const SF_INFO& info, const std::string& name) {
+// libsndfile silently shortens a WAV whose header claims more data than the file holds; its
+// log says "data : N (should be M)". A lying header is a truncated file to us -- except for the
+// placeholder sizes of writers that cannot seek back (sox to a pipe writes 0x7FFFF000, others
+// 0xFFFFFFFF): like Kaldi's wave reader, those mean "read to the end of the stream".
+void check_header_sizes(SNDFILE* f, const std::string& name) {
   char log[8192];
   sf_command(f, SFC_GET_LOG_INFO, log, sizeof log);
-  // libsndfile silently shortens a WAV whose header claims more data than the file holds; its
-  // log says "data : N (should be M)". A lying header is a truncated file to us -- except for the
-  // placeholder sizes of writers that cannot seek back (sox to a pipe writes 0x7FFFF000, others
-  // 0xFFFFFFFF): like Kaldi's wave reader, those mean "read to the end of the stream".
   std::istringstream log_lines(log);
   for (std::string line; std::getline(log_lines, line);) {
     if (starts_with(line, "data") && line.find("should be") != std::string::npos) {
@@ -80,6 +79,21 @@ std::vector<std::vector<float>> read_all(SNDFILE* f, const SF_INFO& info, const 
       }
     }
   }
+}
+
+void check_finite(const float* interleaved, size_t count, int channels, long long first_frame,
+                  const std::string& name) {
+  for (size_t i = 0; i < count; ++i) {
+    if (!std::isfinite(interleaved[i])) {
+      throw Error(name + ": NaN or Inf sample at frame " + std::to_string(first_frame + static_cast<long long>(i / channels)) +
+                  " channel " + std::to_string(i % channels));
+    }
+  }
+}
+
+// Reads all frames from an open handle; checks truncation, emptiness and finiteness.
+std::vector<std::vector<float>> read_all(SNDFILE* f, const SF_INFO& info, const std::string& name) {
+  check_header_sizes(f, name);
   if (info.channels <= 0) throw Error(name + ": no audio channels");
   if (info.frames <= 0) throw Error(name + ": zero-length audio");
   const int ch = info.channels;
@@ -104,12 +118,7 @@ std::vector<std::vector<float>> read_all(SNDFILE* f, const SF_INFO& info, const 
     throw Error(name + ": truncated audio file (" + std::to_string(frames) + " of " +
                 std::to_string(info.frames) + " frames decodable)");
   }
-  for (size_t i = 0; i < interleaved.size(); ++i) {
-    if (!std::isfinite(interleaved[i])) {
-      throw Error(name + ": NaN or Inf sample at frame " + std::to_string(i / ch) + " channel " +
-                  std::to_string(i % ch));
-    }
-  }
+  check_finite(interleaved.data(), interleaved.size(), ch, 0, name);
   std::vector<std::vector<float>> channels(ch);
   if (ch == 1) {
     channels[0] = std::move(interleaved);
@@ -263,6 +272,52 @@ std::vector<std::vector<float>> read_audio_channels(const std::string& rx, Audio
   }
 }
 
+AudioFileReader::AudioFileReader(const std::string& path, const std::string& context, const std::string& shown_name)
+    : name_(name_of(shown_name.empty() ? path : shown_name, context)) {
+  SF_INFO sf{};
+  SNDFILE* f = sf_open(path.c_str(), SFM_READ, &sf);
+  if (!f) {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw Error(name_ + ": cannot open: " + std::strerror(errno));
+    throw Error(name_ + ": unreadable or unsupported audio: " + sf_strerror(nullptr));
+  }
+  try {
+    check_header_sizes(f, name_);
+    if (sf.channels <= 0) throw Error(name_ + ": no audio channels");
+    if (sf.frames <= 0) throw Error(name_ + ": zero-length audio");
+  } catch (...) {
+    sf_close(f);
+    throw;
+  }
+  file_ = f;
+  fill_info(sf, &info_);
+}
+
+AudioFileReader::~AudioFileReader() {
+  if (file_) sf_close(static_cast<SNDFILE*>(file_));
+}
+
+size_t AudioFileReader::read(std::vector<float>* interleaved, size_t max_frames) {
+  SNDFILE* f = static_cast<SNDFILE*>(file_);
+  const size_t ch = static_cast<size_t>(info_.channels);
+  interleaved->resize(max_frames * ch);
+  const sf_count_t got = max_frames ? sf_readf_float(f, interleaved->data(), static_cast<sf_count_t>(max_frames)) : 0;
+  const size_t frames = static_cast<size_t>(std::max<sf_count_t>(got, 0));
+  interleaved->resize(frames * ch);
+  if (sf_error(f) != SF_ERR_NO_ERROR) throw Error(name_ + ": cannot decode audio: " + sf_strerror(f));
+  check_finite(interleaved->data(), interleaved->size(), info_.channels, frames_read_, name_);
+  frames_read_ += static_cast<long long>(frames);
+  if (frames == 0 && max_frames > 0) {
+    // The end: the same checks as a whole-file read.
+    if (frames_read_ == 0) throw Error(name_ + ": zero-length audio");
+    if (frames_read_ < info_.frames) {
+      throw Error(name_ + ": truncated audio file (" + std::to_string(frames_read_) + " of " +
+                  std::to_string(info_.frames) + " frames decodable)");
+    }
+  }
+  return frames;
+}
+
 Signal read_audio(const std::string& rx, const AudioReadOptions& options) {
   AudioInfo info;
   auto channels = read_audio_channels(rx, &info, options.context);
@@ -275,20 +330,39 @@ SampleFormat parse_sample_format(const std::string& name) {
   throw Error("unknown sample format '" + name + "' (expected int16 or float)");
 }
 
-std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, double sample_rate_hz,
-                             const AudioWriteOptions& options) {
-  if (channels.empty()) throw Error("cannot write audio with no channels");
-  const size_t frames = channels[0].size();
-  for (const auto& c : channels)
-    if (c.size() != frames) throw Error("cannot write audio: channels differ in length");
+namespace {
+
+// One sample as every WAV encoder here writes it; returns false for NaN/Inf (nothing appended).
+inline bool put_sample(std::vector<char>& b, float v, bool is_float, long long* clipped) {
+  if (!std::isfinite(v)) return false;
+  if (is_float) {
+    uint32_t u;
+    std::memcpy(&u, &v, 4);
+    put_u32(b, u);
+  } else {
+    // Round to nearest in float (exact for |v| < 2^8) and clip; Kaldi truncates toward zero.
+    float s = std::nearbyint(v * 32768.0f);
+    if (s > 32767.0f || s < -32768.0f) {
+      ++*clipped;
+      s = std::clamp(s, -32768.0f, 32767.0f);
+    }
+    put_u16(b, static_cast<uint16_t>(static_cast<int16_t>(s)));
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<char> wav_header(size_t frames, int channels, double sample_rate_hz, SampleFormat format) {
+  if (channels <= 0 || channels > 65535) throw Error("cannot write audio with " + std::to_string(channels) + " channels");
   if (!(sample_rate_hz > 0) || sample_rate_hz > 4294967295.0) throw Error("cannot write audio: bad sample rate");
-  const uint16_t nch = static_cast<uint16_t>(channels.size());
-  const bool is_float = options.format == SampleFormat::kFloat32;
+  const uint16_t nch = static_cast<uint16_t>(channels);
+  const bool is_float = format == SampleFormat::kFloat32;
   const uint16_t bytes_per_sample = is_float ? 4 : 2;
   const uint64_t data_bytes = static_cast<uint64_t>(frames) * nch * bytes_per_sample;
   if (data_bytes > 0xFFFFFFFFull - 64) throw Error("cannot write audio: longer than a WAV file can hold (4 GB)");
   std::vector<char> b;
-  b.reserve(static_cast<size_t>(data_bytes) + 64);
+  b.reserve(44);
   b.insert(b.end(), {'R', 'I', 'F', 'F'});
   put_u32(b, static_cast<uint32_t>(36 + data_bytes));
   b.insert(b.end(), {'W', 'A', 'V', 'E', 'f', 'm', 't', ' '});
@@ -302,24 +376,39 @@ std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, do
   put_u16(b, static_cast<uint16_t>(8 * bytes_per_sample));
   b.insert(b.end(), {'d', 'a', 't', 'a'});
   put_u32(b, static_cast<uint32_t>(data_bytes));
+  return b;
+}
+
+void append_wav_frames(const float* interleaved, size_t frames, int channels, SampleFormat format,
+                       long long first_frame, std::vector<char>* out, long long* clipped) {
+  const bool is_float = format == SampleFormat::kFloat32;
+  const size_t count = frames * static_cast<size_t>(channels);
+  out->reserve(out->size() + count * (is_float ? 4 : 2));
+  long long clipped_here = 0;
+  for (size_t i = 0; i < count; ++i) {
+    if (!put_sample(*out, interleaved[i], is_float, &clipped_here))
+      throw Error("cannot write audio: NaN or Inf sample at frame " +
+                  std::to_string(first_frame + static_cast<long long>(i / static_cast<size_t>(channels))));
+  }
+  if (clipped) *clipped += clipped_here;
+}
+
+std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, double sample_rate_hz,
+                             const AudioWriteOptions& options) {
+  if (channels.empty()) throw Error("cannot write audio with no channels");
+  const size_t frames = channels[0].size();
+  for (const auto& c : channels)
+    if (c.size() != frames) throw Error("cannot write audio: channels differ in length");
+  if (!(sample_rate_hz > 0) || sample_rate_hz > 4294967295.0) throw Error("cannot write audio: bad sample rate");
+  const uint16_t nch = static_cast<uint16_t>(channels.size());
+  const bool is_float = options.format == SampleFormat::kFloat32;
+  std::vector<char> b = wav_header(frames, nch, sample_rate_hz, options.format);
+  b.reserve(b.size() + frames * nch * (is_float ? 4 : 2));
   long long clipped = 0;
   for (size_t n = 0; n < frames; ++n) {
     for (uint16_t c = 0; c < nch; ++c) {
-      float v = channels[c][n];
-      if (!std::isfinite(v)) throw Error("cannot write audio: NaN or Inf sample at frame " + std::to_string(n));
-      if (is_float) {
-        uint32_t u;
-        std::memcpy(&u, &v, 4);
-        put_u32(b, u);
-      } else {
-        // Round to nearest in float (exact for |v| < 2^8) and clip; Kaldi truncates toward zero.
-        float s = std::nearbyint(v * 32768.0f);
-        if (s > 32767.0f || s < -32768.0f) {
-          ++clipped;
-          s = std::clamp(s, -32768.0f, 32767.0f);
-        }
-        put_u16(b, static_cast<uint16_t>(static_cast<int16_t>(s)));
-      }
+      if (!put_sample(b, channels[c][n], is_float, &clipped))
+        throw Error("cannot write audio: NaN or Inf sample at frame " + std::to_string(n));
     }
   }
   if (options.clipped_samples) *options.clipped_samples = clipped;

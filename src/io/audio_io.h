@@ -33,6 +33,31 @@ std::vector<std::vector<float>> decode_audio_bytes(const std::vector<char>& byte
                                                    const std::string& name);
 AudioInfo probe_audio(const std::string& path);
 
+// Reads an audio file (a path: it must be a seekable file, not a pipe) a block of frames at a
+// time, so that its length does not decide the memory used. Same checks and messages as
+// read_audio_channels(): a lying header or zero length when opened, NaN/Inf in each block, a
+// shortfall against the header's frame count at the end. Errors name `context` and `shown_name`
+// (default: the path; e.g. the pipe a temporary copy came from).
+class AudioFileReader {
+ public:
+  explicit AudioFileReader(const std::string& path, const std::string& context = "",
+                           const std::string& shown_name = "");
+  ~AudioFileReader();
+  const AudioInfo& info() const { return info_; }
+  // Up to `max_frames` interleaved frames into *interleaved (resized to what was read); returns
+  // the number of frames read, 0 at the end of the file.
+  size_t read(std::vector<float>* interleaved, size_t max_frames);
+  long long frames_read() const { return frames_read_; }
+  AudioFileReader(const AudioFileReader&) = delete;
+  AudioFileReader& operator=(const AudioFileReader&) = delete;
+
+ private:
+  std::string name_;
+  void* file_ = nullptr;  // SNDFILE*
+  AudioInfo info_;
+  long long frames_read_ = 0;
+};
+
 enum class SampleFormat { kInt16, kFloat32 };
 SampleFormat parse_sample_format(const std::string& name);  // "int16" | "float"
 
@@ -51,6 +76,13 @@ void write_wav_channels(const std::string& path, const std::vector<std::vector<f
 // Encodes to an in-memory WAV (for stdout and pipes).
 std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, double sample_rate_hz,
                              const AudioWriteOptions& options = {});
+// The same WAV in pieces, for audio too long to hold: the 44-byte header for `frames` frames
+// (throws beyond 4 GB of data), then the samples, interleaved, appended block by block to *out
+// with encode_wav()'s conversion (int16: rounded, clipped; clipped samples added to *clipped).
+// `first_frame` only numbers a NaN/Inf frame in the error.
+std::vector<char> wav_header(size_t frames, int channels, double sample_rate_hz, SampleFormat format);
+void append_wav_frames(const float* interleaved, size_t frames, int channels, SampleFormat format,
+                       long long first_frame, std::vector<char>* out, long long* clipped);
 
 // libsox "rate -v" (very high quality, linear phase). Returns the input unchanged if rates match.
 std::vector<float> resample(const std::vector<float>& samples, double from_hz, double to_hz);

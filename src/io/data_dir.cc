@@ -1,6 +1,7 @@
 #include "io/data_dir.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -38,6 +39,40 @@ std::map<std::string, std::string> to_map(const Table& t) {
   return m;
 }
 
+// Strict UTF-8 (no overlong forms, surrogates or code points above U+10FFFF): Kaldi's
+// utils/validate_text.pl refuses any other text file.
+bool is_utf8(const std::string& s) {
+  size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    size_t n = 0;
+    uint32_t cp = 0;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      n = 1, cp = c & 0x1F;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      n = 2, cp = c & 0x0F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      n = 3, cp = c & 0x07;
+    } else {
+      return false;
+    }
+    if (i + n >= s.size()) return false;  // sequence cut off by the end of the line
+    for (size_t k = 1; k <= n; ++k) {
+      const auto cc = static_cast<unsigned char>(s[i + k]);
+      if ((cc & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (cc & 0x3F);
+    }
+    if ((n == 2 && cp < 0x800) || (n == 3 && (cp < 0x10000 || cp > 0x10FFFF)) || (cp >= 0xD800 && cp <= 0xDFFF)) {
+      return false;
+    }
+    i += n + 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 DataDir read_data_dir(const std::string& dir) {
@@ -62,7 +97,13 @@ DataDir read_data_dir(const std::string& dir) {
   if (fs::exists(join(dir, "text"))) {
     TableReadOptions o;
     o.allow_empty_value = true;
-    d.text = to_map(read_table(join(dir, "text"), o));
+    const Table t = read_table(join(dir, "text"), o);
+    for (const auto& e : t.entries) {
+      if (!is_utf8(e.key) || !is_utf8(e.value)) {
+        throw Error(located(t.source, e.line, "not valid UTF-8 (Kaldi's utils/validate_text.pl requires UTF-8 text)"));
+      }
+    }
+    d.text = to_map(t);
   }
   if (fs::exists(join(dir, "segments"))) {
     const std::string p = join(dir, "segments");
@@ -74,6 +115,8 @@ DataDir read_data_dir(const std::string& dir) {
       s.recording_id = f[0];
       s.start_s = parse_double(f[1], located(p, e.line, "start"));
       s.end_s = parse_double(f[2], located(p, e.line, "end"));
+      // Kaldi's extract-segments rejects a negative start; end -1 means "to the end".
+      if (s.start_s < 0) throw Error(located(p, e.line, "segment start must not be negative"));
       if (!(s.end_s > s.start_s) && s.end_s != -1) throw Error(located(p, e.line, "segment end must be after its start"));
       if (!d.wav_scp.count(s.recording_id)) {
         throw Error(located(p, e.line, "recording '" + s.recording_id + "' is not in wav.scp"));
@@ -113,7 +156,16 @@ DataDir read_data_dir(const std::string& dir) {
         throw Error(located(p, e.line, "spk2utt entry for '" + e.key + "' disagrees with utt2spk"));
       }
     }
-    if (t.entries.size() != expected.size()) throw Error(p + ": speakers disagree with utt2spk");
+    if (t.entries.size() != expected.size()) {
+      // Every spk2utt line matched, so a speaker of utt2spk has none: name the first.
+      std::set<std::string> listed;
+      for (const auto& e : t.entries) listed.insert(e.key);
+      for (const auto& e : u2s_t.entries) {
+        const std::string spk = trim(e.value);
+        if (!listed.count(spk)) throw Error(located(u2s, e.line, "speaker '" + spk + "' has no line in " + p));
+      }
+      throw Error(p + ": speakers disagree with utt2spk");
+    }
   }
   return d;
 }
@@ -129,8 +181,15 @@ std::vector<std::string> validate_data_dir(const std::string& dir, bool require_
     std::ifstream in(p, std::ios::binary);
     std::string prev, line;
     int n = 0;
+    bool cr_seen = false;
     while (std::getline(in, line)) {
       ++n;
+      if (!cr_seen && !line.empty() && line.back() == '\r') {
+        // Our readers strip it, but Kaldi's awk/perl scripts keep it in the last field
+        // (speaker "spk1\r" in utt2spk_to_spk2utt.pl, file names ending in '\r'): named once per file.
+        problems.push_back(located(p, n, "carriage return at the end of the line (DOS line endings; convert with dos2unix)"));
+        cr_seen = true;
+      }
       std::string key = line.substr(0, line.find_first_of(" \t"));
       if (key.empty()) {
         problems.push_back(located(p, n, "empty key"));
@@ -141,6 +200,8 @@ std::vector<std::string> validate_data_dir(const std::string& dir, bool require_
       }
       prev = key;
     }
+    // validate_data_dir.sh: "empty file utt2spk" (and spk2utt); likewise the other required files.
+    if (n == 0 && required) problems.push_back(p + ": empty");
   };
   for (const char* f : {"wav.scp", "utt2spk", "spk2utt"}) check_sorted(f, true);
   check_sorted("text", require_text);
@@ -172,6 +233,19 @@ std::vector<std::string> validate_data_dir(const std::string& dir, bool require_
     if (!d.reco2dur.empty()) {
       for (const auto& [r, v] : d.wav_scp)
         if (!d.reco2dur.count(r)) problems.push_back(join(dir, "reco2dur") + ": no entry for recording '" + r + "'");
+      if (d.has_segments()) {
+        // Kaldi's extract-segments drops a segment that ends more than --max-overshoot (0.5 s)
+        // after its recording: the utterance would silently vanish from the features.
+        const Table seg_t = read_table(join(dir, "segments"));
+        for (const auto& e : seg_t.entries) {
+          const Segment& sg = d.segments.at(e.key);
+          auto dur = d.reco2dur.find(sg.recording_id);
+          if (dur != d.reco2dur.end() && sg.end_s > dur->second + 0.5) {
+            problems.push_back(located(seg_t.source, e.line, "segment ends at " + format_double(sg.end_s) + " s, after the end of recording '" +
+                                                                 sg.recording_id + "' (" + format_double(dur->second) + " s in reco2dur)"));
+          }
+        }
+      }
     }
   } catch (const Error& e) {
     problems.push_back(e.what());

@@ -1,6 +1,7 @@
 #include "sim/room_metadata.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -8,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "sim/room_list.h"
 #include "util/error.h"
 #include "util/rng.h"
 #include "util/strings.h"
@@ -17,6 +19,8 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string read_text(const std::string& path) {
+  // An ifstream opens a directory and reads nothing: say what is wrong instead of "no rows".
+  if (fs::is_directory(path)) throw Error(path + ": is a directory, expected a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open");
   std::ostringstream ss;
@@ -57,6 +61,33 @@ std::vector<fs::path> sorted_subdirs(const fs::path& dir) {
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// The id as it can be shown in one line of a message (control bytes as \xNN).
+std::string printable(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out;
+}
+
+// An id goes into a room list as one whitespace-separated word: whitespace would split it, '#'
+// would start a comment, control bytes break the Kaldi tables rir-simulate writes from it.
+void check_list_word(const std::string& id, const char* what, const std::string& where) {
+  if (id.empty()) throw Error(where + ": empty " + what);
+  for (unsigned char c : id) {
+    if (c <= 0x20 || c == 0x7f || c == '#') {
+      throw Error(where + ": " + what + " '" + printable(id) +
+                  "' cannot be written to a room list (whitespace, control character or '#')");
+    }
+  }
 }
 
 bool inside(const Vec3& p, const Vec3& size) {
@@ -125,6 +156,8 @@ std::vector<MetadataSetup> read_r3vival_positions(const std::string& csv_path, c
 std::vector<MetadataSetup> read_but_reverbdb(const std::string& root, std::vector<std::string>* skipped) {
   if (!fs::is_directory(root)) throw Error(root + ": not a directory (expected the BUT ReverbDB root)");
   std::vector<MetadataSetup> out;
+  size_t skipped_count = 0;
+  std::string first_skipped;
   for (const fs::path& room_dir : sorted_subdirs(root)) {
     const fs::path env = room_dir / "env_meta.txt";
     if (!fs::exists(env)) continue;
@@ -151,10 +184,10 @@ std::vector<MetadataSetup> read_but_reverbdb(const std::string& root, std::vecto
                          meta_number(mic_meta, "EnvMic" + n + "Width", mic_file.string()),
                          meta_number(mic_meta, "EnvMic" + n + "Height", mic_file.string())};
           if (!inside(src, size) || !inside(mic, size)) {
-            if (skipped) {
-              skipped->push_back(mic_file.string() + ": " + (!inside(src, size) ? "source" : "microphone") +
-                                 " outside the room given in " + env.string());
-            }
+            const std::string reason = mic_file.string() + ": " + (!inside(src, size) ? "source" : "microphone") +
+                                       " outside the room given in " + env.string();
+            if (skipped_count++ == 0) first_skipped = reason;
+            if (skipped) skipped->push_back(reason);
             continue;
           }
           MetadataSetup setup;
@@ -169,6 +202,11 @@ std::vector<MetadataSetup> read_but_reverbdb(const std::string& root, std::vecto
         }
       }
     }
+  }
+  if (out.empty() && skipped_count > 0) {
+    // The caller prints the skipped list only on success: the error itself must say why.
+    throw Error(root + ": all " + std::to_string(skipped_count) + " set-ups lie outside their rooms; first: " +
+                first_skipped);
   }
   if (out.empty()) throw Error(root + ": no RIR metadata found (expected <room>/env_meta.txt and "
                                       "<room>/<config>/<speaker>/<mic>/mic_meta.txt)");
@@ -249,6 +287,20 @@ std::vector<RoomSpec> rooms_from_setups(const std::vector<MetadataSetup>& setups
       }
     }
     validate_room(room);
+    check_list_word(room.rir_id, "rir id", s.where);
+    if (!room.room_id.empty()) check_list_word(room.room_id, "room id", s.where);
+    // What rir-simulate will read is the written line: the room must survive it (a position a
+    // hair inside a wall lands on it at 9 significant digits; an id rir-simulate refuses).
+    RoomSpec written;
+    try {
+      written = parse_room_list_line(format_room_list_line(room), s.where);
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) + " (read back from the room-list line as written; positions have 9 significant digits)");
+    }
+    if (written.rir_id != room.rir_id || written.effective_room_id() != room.effective_room_id()) {
+      throw Error(s.where + ": rir id '" + printable(room.rir_id) + "' / room id '" + printable(room.room_id) +
+                  "' would not read back from a room list");
+    }
     rooms.push_back(room);
   }
   return rooms;

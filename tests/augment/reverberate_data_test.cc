@@ -12,6 +12,7 @@
 #include "io/data_dir.h"
 #include "io/kaldi_lists.h"
 #include "io/rxfile.h"
+#include "io/shell.h"
 #include "reference_model.h"
 #include "util/strings.h"
 
@@ -160,6 +161,36 @@ TEST_F(ReverberateData, KaldiIdsCopiesAndTables) {
     }
   }
   EXPECT_TRUE(tsrir::validate_data_dir(dir + "/out", true).empty());
+}
+
+// --max-in-memory-duration 0 streams every recording (the path of those over 5 minutes): the
+// wavs must be the in-memory ones byte for byte, for file and piped wav.scp entries, with RIRs and
+// noises at other rates (resampled) and looped noise from random offsets.
+TEST_F(ReverberateData, StreamedRecordingsGiveTheSameWavs) {
+  std::string piped_scp;
+  for (const auto& [id, rx] : tsrir::read_data_dir(dir + "/in").wav_scp)
+    piped_scp += id + (id == "spkB-u1" ? " " + rx : " cat " + tsrir::shell_quote(rx) + " |") + "\n";
+  write_text(dir + "/in_piped/wav.scp", piped_scp);
+  fs::copy_file(dir + "/in/utt2spk", dir + "/in_piped/utt2spk");
+  for (const std::string in : {"in", "in_piped"}) {
+    SCOPED_TRACE(in);
+    const std::string common = lists() + "--random-seed 3 --snrs 0:10 --num-threads 2 ";
+    CliRun memory = run_in(dir, common + "--write-wavs w_mem_" + in + " " + in + " o_mem_" + in);
+    ASSERT_EQ(memory.status, 0) << memory.log;
+    CliRun streamed = run_in(dir, common + "--max-in-memory-duration 0 --write-wavs w_str_" + in + " " + in + " o_str_" + in);
+    ASSERT_EQ(streamed.status, 0) << streamed.log;
+    EXPECT_NE(streamed.log.find("passes over the file"), std::string::npos) << streamed.log;
+    EXPECT_EQ(memory.log.find("passes over the file"), std::string::npos) << memory.log;
+    size_t compared = 0;
+    for (const auto& entry : fs::directory_iterator(dir + "/w_mem_" + in)) {
+      const std::string name = entry.path().filename();
+      EXPECT_EQ(read_text(entry.path()), read_text(dir + "/w_str_" + in + "/" + name)) << name;
+      ++compared;
+    }
+    EXPECT_EQ(compared, 6u);
+  }
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
 }
 
 TEST_F(ReverberateData, SegmentsAndOptionalTables) {

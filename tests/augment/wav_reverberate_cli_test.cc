@@ -202,6 +202,94 @@ TEST_F(WavReverberateCli, KaldiScriptPipesRunUnchanged) {
   EXPECT_LE(worst, 1.0);
 }
 
+std::string file_bytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+std::vector<std::string> temporaries_in(const std::string& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos) found.push_back(e.path().string());
+  return found;
+}
+
+// --max-in-memory-duration=0 sends every input through the streaming passes (the path of inputs
+// over 5 minutes): the output must be the in-memory path's, byte for byte, for every option the
+// program has. (Chunk and block boundaries inside the passes are covered by
+// reverberate_stream_test.cc; here it is the program's plumbing: channels, pipes, stdio.)
+TEST_F(WavReverberateCli, StreamingPathWritesTheSameBytes) {
+  // Stereo RIR and noises for --multi-channel-output, a stereo input for --input-wave-channel.
+  reftest::write_wav(d("rir_stereo.wav"), {reftest::quantise16(*h_), reftest::quantise16(reftest::synthetic_rir(4000, 16000, 150, 0.4, 25))}, 16000, 16);
+  reftest::write_wav(d("noise_stereo.wav"), {*n1_, reftest::quantise16(reftest::noise_signal(9000, 26))}, 16000, 16);
+  reftest::write_wav(d("speech_stereo.wav"), {reftest::quantise16(reftest::speech_like(16000, 16000, 27)), *x_}, 16000, 16);
+  const std::string rir = " --impulse-response=" + d("rir16.wav");
+  const std::string noises = " --additive-signals=" + d("noise1.wav") + "," + d("noise2.wav");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"plain", rir},
+      {"noshift", rir + " --shift-output=false"},
+      {"nonorm", rir + " --normalize-output=false"},
+      {"volume", rir + " --volume=0.6"},
+      {"shorter", rir + " --duration=0.4"},
+      {"tiled", rir + " --duration=2.7"},
+      {"tiled_noshift", rir + " --duration=2.7 --shift-output=false --normalize-output=false"},
+      {"kaldi_noise", rir + noises + " --snrs=5,10 --start-times=0,0.37"},
+      {"looped", rir + noises + " --snrs=5,10 --start-times=0.1,0.37 --additive-offsets=0.2,1.3 --loop-additive-signals"},
+      {"full_ref", rir + noises + " --snrs=5,10 --start-times=0,0 --loop-additive-signals --snr-reference=full"},
+      {"no_rir", noises + " --snrs=0,3 --start-times=0.5,0"},
+      {"multichannel", " --impulse-response=" + d("rir_stereo.wav") + " --multi-channel-output=true --additive-signals=" +
+                           d("noise_stereo.wav") + " --snrs=4 --start-times=0.2 --loop-additive-signals"},
+      {"rir_channel", " --impulse-response=" + d("rir_stereo.wav") + " --rir-channel=1 --additive-signals=" +
+                          d("noise_stereo.wav") + " --noise-channel=1 --snrs=4 --start-times=0.2"},
+  };
+  const std::string stream = " --max-in-memory-duration=0";
+  for (const auto& [tag, options] : cases) {
+    SCOPED_TRACE(tag);
+    const std::string mem = d("mem_" + tag + ".wav"), str = d("str_" + tag + ".wav");
+    const std::string speech = d(tag == "rir_channel" ? "speech_stereo.wav" : "speech.wav");
+    const std::string input_channel = tag == "rir_channel" ? " --input-wave-channel=1" : "";
+    ASSERT_EQ(run(kBin + " --print-args=false" + input_channel + options + " " + speech + " " + mem), 0);
+    ASSERT_EQ(run(kBin + " --print-args=false" + input_channel + stream + options + " " + speech + " " + str +
+                  " 2> " + d("str.log")),
+              0);
+    // The streaming path really ran.
+    EXPECT_NE(file_bytes(d("str.log")).find("passes over the file"), std::string::npos) << file_bytes(d("str.log"));
+    EXPECT_EQ(file_bytes(mem), file_bytes(str));
+  }
+  const std::string want = file_bytes(d("mem_looped.wav"));
+  const std::string looped = stream + rir + noises + " --snrs=5,10 --start-times=0.1,0.37 --additive-offsets=0.2,1.3 --loop-additive-signals";
+  // Non-seekable inputs (a pipe, stdin) are copied to a temporary file first; stdout and a pipe
+  // as outputs get the header first (its sizes known after pass 1). Temporaries of stdout
+  // outputs go to $TMPDIR: a private one here, which must be left empty.
+  std::filesystem::create_directories(d("tmp"));
+  const std::string env = "TMPDIR=" + d("tmp") + " ";
+  ASSERT_EQ(run(env + kBin + " --print-args=false" + looped + " 'cat " + d("speech.wav") + " |' " + d("s_pipe.wav") + " 2>/dev/null"), 0);
+  EXPECT_EQ(file_bytes(d("s_pipe.wav")), want);
+  ASSERT_EQ(run("cat " + d("speech.wav") + " | " + env + kBin + " --print-args=false" + looped + " - - > " + d("s_stdio.wav") + " 2>/dev/null"), 0);
+  EXPECT_EQ(file_bytes(d("s_stdio.wav")), want);
+  ASSERT_EQ(run(env + kBin + " --print-args=false" + looped + " " + d("speech.wav") + " '| cat > " + d("s_outpipe.wav") + "' 2>/dev/null"), 0);
+  EXPECT_EQ(file_bytes(d("s_outpipe.wav")), want);
+  EXPECT_TRUE(std::filesystem::is_empty(d("tmp")));
+  EXPECT_TRUE(temporaries_in(*dir_).empty());
+}
+
+TEST_F(WavReverberateCli, StreamingPathErrorsLeaveNothing) {
+  const std::string stream = " --print-args=false --max-in-memory-duration=0 --impulse-response=" + d("rir16.wav");
+  const std::string bytes = file_bytes(d("speech.wav"));
+  std::ofstream(d("cut.wav"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);  // header claims twice that
+  std::filesystem::create_directories(d("tmp_err"));
+  const std::string env = "TMPDIR=" + d("tmp_err") + " ";
+  EXPECT_EQ(run(env + kBin + stream + " " + d("cut.wav") + " " + d("e1.wav") + " 2> " + d("e1.log")), 255);
+  EXPECT_NE(file_bytes(d("e1.log")).find("cut.wav"), std::string::npos) << file_bytes(d("e1.log"));
+  EXPECT_EQ(run(env + kBin + stream + " 'cat " + d("cut.wav") + " |' " + d("e2.wav") + " 2>/dev/null"), 255);
+  EXPECT_EQ(run(env + kBin + stream + " 'cat " + d("speech.wav") + "; exit 3 |' " + d("e3.wav") + " 2> " + d("e3.log")), 255);
+  EXPECT_NE(file_bytes(d("e3.log")).find("exit status 3"), std::string::npos) << file_bytes(d("e3.log"));
+  EXPECT_EQ(run(env + kBin + stream + " --input-wave-channel=2 " + d("speech.wav") + " " + d("e4.wav") + " 2>/dev/null"), 255);
+  for (const char* name : {"e1.wav", "e2.wav", "e3.wav", "e4.wav"}) EXPECT_FALSE(std::filesystem::exists(d(name))) << name;
+  EXPECT_TRUE(std::filesystem::is_empty(d("tmp_err")));
+  EXPECT_TRUE(temporaries_in(*dir_).empty());
+}
+
 TEST_F(WavReverberateCli, CommandLineContract) {
   const std::string q = " 2>/dev/null >/dev/null";
   const std::string io = " " + d("speech.wav") + " " + d("c.wav");

@@ -296,4 +296,39 @@ TEST_F(GanCli, TranslationKeepsIdsLengthsAndLevels) {
   EXPECT_NE(r.err.find("width"), std::string::npos) << r.err;
 }
 
+// The light decoder and bfloat16 arithmetic are part of a model's settings: a resume must agree,
+// gas-to-real rebuilds the light generator from the checkpoint, and bfloat16 translation stays
+// within 3% RMS of float32 (bfloat16 keeps 8 significant bits; see gan_networks_test for 1%).
+TEST_F(GanCli, LightDecoderAndBfloat16) {
+  ASSERT_EQ(run(train("--steps=2 --decoder=light --precision=bfloat16", "m"), dir_).status, 0);
+  EXPECT_NE(slurp(dir_ + "/m/settings.txt").find("decoder light"), std::string::npos);
+  RunResult r = run(train("--steps=3 --resume --precision=bfloat16", "m"), dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("decoder"), std::string::npos) << r.err;
+  r = run(train("--steps=3 --resume --decoder=light", "m"), dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--precision=bfloat16"), std::string::npos) << r.err;
+  ASSERT_EQ(run(train("--steps=3 --resume --decoder=light --precision=bfloat16", "m"), dir_).status, 0);
+  EXPECT_EQ(loss_rows(dir_ + "/m/loss_log.csv").size(), 3u);
+  EXPECT_NE(run(train("--steps=1 --decoder=heavy", "m2"), dir_).err.find("original or light"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --precision=half", "m2"), dir_).err.find("float32 or bfloat16"), std::string::npos);
+
+  const std::string model = " --model=" + dir_ + "/m --keep-length=input ";
+  ASSERT_EQ(run(kBin + "/gas-to-real" + model + synthetic_ + " " + dir_ + "/f32", dir_).status, 0);
+  ASSERT_EQ(run(kBin + "/gas-to-real" + model + "--precision=bfloat16 " + synthetic_ + " " + dir_ + "/bf16", dir_).status, 0);
+  EXPECT_NE(run(kBin + "/gas-to-real" + model + "--precision=fp8 " + synthetic_ + " " + dir_ + "/x", dir_).status, 0);
+  for (const auto& ref : tsrir::read_rir_refs(dir_ + "/f32/rir.scp")) {
+    const tsrir::Signal a = tsrir::load_rir(ref);
+    const tsrir::Signal b = tsrir::read_audio(dir_ + "/bf16/" + ref.id + ".wav");
+    ASSERT_EQ(a.samples.size(), b.samples.size()) << ref.id;
+    double diff = 0, norm = 0;
+    for (size_t i = 0; i < a.samples.size(); ++i) {
+      diff += (a.samples[i] - b.samples[i]) * double(a.samples[i] - b.samples[i]);
+      norm += a.samples[i] * double(a.samples[i]);
+    }
+    ASSERT_GT(norm, 0.0) << ref.id;
+    EXPECT_LT(std::sqrt(diff / norm), 0.03) << ref.id;
+  }
+}
+
 }  // namespace

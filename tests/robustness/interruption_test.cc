@@ -11,6 +11,8 @@
 //  - the re-run exits 0 and produces exactly the baseline;
 //  - ts-rirgan-train killed with SIGKILL and re-run with --resume continues from its last
 //    checkpoint: the final loss log equals the uninterrupted run's.
+//  - rir-diagnose's reported run time is the one part of its output that differs between
+//    complete runs; it is masked before comparing (see mask_run_time).
 // Programs not built in this build (e.g. ts-rirgan-train without LibTorch) are skipped by name.
 // TSRIR_INTERRUPT_TRIALS (default 4) and TSRIR_INTERRUPT_SEED vary the kill points
 // (tests/robustness/run_interrupts.sh runs many more).
@@ -35,6 +37,7 @@
 
 namespace fs = std::filesystem;
 using robust::make_wav;
+using robust::synthetic_rir;
 using robust::WavSpec;
 
 namespace {
@@ -46,25 +49,15 @@ int env_int(const char* name, int fallback) {
   return v && *v ? std::atoi(v) : fallback;
 }
 
-// A decaying noise RIR (independent of the simulator): direct peak then exp decay with t60_s.
-std::vector<int16_t> synthetic_rir(std::mt19937& rng, double t60_s, size_t n, double rate_hz = 16000.0) {
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::vector<int16_t> v(n, 0);
-  const size_t onset = 40;
-  v[onset] = 20000;
-  for (size_t i = onset + 1; i < n; ++i) {
-    const double t = (i - onset) / rate_hz;
-    v[i] = static_cast<int16_t>(std::lround(std::clamp(3000.0 * std::pow(10.0, -3.0 * t / t60_s) * normal(rng), -32767.0, 32767.0)));
-  }
-  return v;
-}
-
 class Interruption : public robust::ScratchDirTest {
  protected:
   struct Job {
     std::string program;                 // in TSRIR_BIN_DIR
     std::vector<std::string> args;
     std::vector<std::string> outputs;    // final-named outputs (files or directories) under dir_
+    // Masks what legitimately differs between complete runs (a measured run time), given the
+    // output's relative path and bytes; the rest is compared byte for byte.
+    std::function<std::string(const std::string&, std::string)> normalise = nullptr;
   };
 
   Snapshot snapshot(const Job& job) const {
@@ -77,6 +70,9 @@ class Interruption : public robust::ScratchDirTest {
       } else if (fs::exists(p)) {
         s[out] = read_bytes(p.string());
       }
+    }
+    if (job.normalise) {
+      for (auto& [rel, bytes] : s) bytes = job.normalise(rel, std::move(bytes));
     }
     return s;
   }
@@ -269,6 +265,56 @@ TEST_F(Interruption, WavReverberate) {
   check_interruptions({"wav-reverberate",
                        {"--print-args=false", "--impulse-response=" + path("rirs/rirs_0.wav"), path("long.wav"), path("out.wav")},
                        {"out.wav"}});
+}
+
+// rir-diagnose writes findings.json, report.html and extended_models into one directory swapped in
+// at the end. Its analysis is deterministic for a fixed seed and thread count, except the run time
+// it reports ("seconds" in findings.json, "...; 0.323 s." in report.html): that number is masked,
+// everything else is compared byte for byte.
+std::string mask_run_time(const std::string& rel, std::string bytes) {
+  auto mask_after = [&](const std::string& anchor, const std::string& stop) {
+    const size_t a = bytes.find(anchor);
+    if (a == std::string::npos) return;
+    const size_t from = a + anchor.size();
+    const size_t to = bytes.find(stop, from);
+    if (to != std::string::npos) bytes.replace(from, to - from, "<run time>");
+  };
+  if (rel.size() >= 13 && rel.compare(rel.size() - 13, 13, "findings.json") == 0) mask_after("\"seconds\": ", "\n");
+  if (rel.size() >= 11 && rel.compare(rel.size() - 11, 11, "report.html") == 0) mask_after("held-out RIRs; ", " s.</p>");
+  return bytes;
+}
+
+TEST_F(Interruption, RirDiagnose) {
+  // 24 "measured" RIRs of 1 s: ~0.4 s of simulation and analysis on one thread (the protocol runs
+  // it 9 times; the test stays under ~5 s).
+  std::vector<std::string> ids, wavs;
+  fs::create_directories(dir_ / "measured");
+  for (int i = 0; i < 24; ++i) {
+    ids.push_back("m" + std::to_string(i));
+    wavs.push_back(path("measured/m" + std::to_string(i) + ".wav"));
+  }
+  robust::write_diagnose_inputs(ids, wavs, path("rooms.txt"), path("measured.scp"), 16000);
+  Job job{"rir-diagnose",
+          {"--num-threads=1", "--seed=3", path("rooms.txt"), path("measured.scp"), path("diag")},
+          {"diag"},
+          mask_run_time};
+  check_interruptions(job);
+  // The mask must not hide a difference of substance: it replaced exactly one number per file.
+  const Snapshot s = snapshot(job);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_NE(s.at("diag/findings.json").find("\"seconds\": <run time>\n"), std::string::npos);
+  EXPECT_NE(s.at("diag/report.html").find("held-out RIRs; <run time> s.</p>"), std::string::npos);
+}
+
+TEST_F(Interruption, RirRoomList) {
+  // 20000 set-ups: ~0.1 s, enough to land kills while the list is being written.
+  std::string table = "rir-id Lx Ly Lz sx sy sz mx my mz room-id\n";
+  for (int i = 0; i < 20000; ++i) {
+    table += "r" + std::to_string(i) + " 6 4 3 1 1 1.5 " + std::to_string(2 + (i % 30) * 0.1) + " 2.5 1.2 room" +
+             std::to_string(i % 7) + "\n";
+  }
+  write_bytes(path("setups.txt"), table);
+  check_interruptions({"rir-room-list", {"--seed=4", path("setups.txt"), path("rooms.txt")}, {"rooms.txt"}});
 }
 
 TEST_F(Interruption, GanTrainingResumesFromLastCheckpoint) {

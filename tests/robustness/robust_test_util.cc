@@ -3,7 +3,9 @@
 #include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -58,6 +60,39 @@ std::vector<int16_t> test_tone(size_t n, double freq_hz, double rate_hz) {
   std::vector<int16_t> v(n);
   for (size_t i = 0; i < n; ++i) v[i] = static_cast<int16_t>(std::lround(8000.0 * std::sin(2 * M_PI * freq_hz * i / rate_hz)));
   return v;
+}
+
+std::vector<int16_t> synthetic_rir(std::mt19937& rng, double t60_s, size_t n, double rate_hz) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<int16_t> v(n, 0);
+  const size_t onset = 40;
+  if (n <= onset) return v;
+  v[onset] = 20000;
+  for (size_t i = onset + 1; i < n; ++i) {
+    const double t = (i - onset) / rate_hz;
+    v[i] = static_cast<int16_t>(
+        std::lround(std::clamp(3000.0 * std::pow(10.0, -3.0 * t / t60_s) * normal(rng), -32767.0, 32767.0)));
+  }
+  return v;
+}
+
+std::string diagnose_room_line(const std::string& id, size_t index) {
+  char line[160];
+  std::snprintf(line, sizeof line, " room=6,4,3 src=1,1,1.5 mic=%.2f,2.5,1.2 t60=%.2f", 2.0 + 0.08 * (index % 45),
+                0.3 + 0.05 * (index % 6));
+  return id + line;
+}
+
+void write_diagnose_inputs(const std::vector<std::string>& ids, const std::vector<std::string>& wavs,
+                           const std::string& room_list, const std::string& scp, size_t length) {
+  std::mt19937 rng(17);
+  std::ofstream rooms(room_list, std::ios::binary), list(scp, std::ios::binary);
+  for (size_t i = 0; i < ids.size(); ++i) {
+    const std::string wav = make_wav({}, synthetic_rir(rng, 0.3 + 0.05 * (i % 6), length));
+    std::ofstream(wavs[i], std::ios::binary).write(wav.data(), static_cast<std::streamsize>(wav.size()));
+    rooms << diagnose_room_line(ids[i], i) << "\n";
+    list << ids[i] << " " << wavs[i] << "\n";
+  }
 }
 
 RunResult run_argv(const std::vector<std::string>& argv) {

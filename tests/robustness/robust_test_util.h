@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,17 @@ struct WavSpec {
 };
 std::string make_wav(const WavSpec& spec, const std::vector<int16_t>& samples);
 std::vector<int16_t> test_tone(size_t n, double freq_hz = 440.0, double rate_hz = 16000.0);
+// A decaying noise RIR made here, independently of the simulator: a direct peak at sample 40,
+// then Gaussian noise decaying by 60 dB in t60_s.
+std::vector<int16_t> synthetic_rir(std::mt19937& rng, double t60_s, size_t n, double rate_hz = 16000.0);
+
+// rir-diagnose inputs: one "measured" RIR per id (synthetic_rir, `length` samples at 16 kHz,
+// T60 0.3-0.55 s) written to wavs[i], a room list stating each set-up (a 6 x 4 x 3 m room, the
+// microphone moving along x) and an scp of "<id> <wav>".
+void write_diagnose_inputs(const std::vector<std::string>& ids, const std::vector<std::string>& wavs,
+                           const std::string& room_list, const std::string& scp, size_t length = 8000);
+// The room-list line write_diagnose_inputs states for RIR `index`.
+std::string diagnose_room_line(const std::string& id, size_t index);
 
 struct RunResult {
   int status = -1;      // exit status, or 128 + signal

@@ -1,0 +1,83 @@
+// Generator forward throughput (the cost of gas-to-real without file I/O): RIRs/s, ms per batch
+// and achieved GFLOP/s for a width, decoder, batch size, thread count and precision, so that a
+// translation rate can be compared with what the machine's arithmetic allows.
+//   gan_forward_bench [--width=64] [--decoder=original|light] [--batch=16] [--threads=2]
+//                     [--precision=float32|bfloat16] [--reps=5]
+#include <c10/core/InferenceMode.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "gan/gan_networks.h"
+#include "gan/gan_runtime.h"
+#include "gan/gan_settings.h"
+
+namespace {
+
+// Multiply-adds x 2 of one generator pass on 16384 samples (direct convolution count; the
+// transposed convs' phase decomposition adds 28/25 of theirs).
+double generator_gflop(int w, const std::string& decoder, int k) {
+  int m[3];
+  tsrir::decoder_multipliers(decoder, m);
+  double macs = 0.0;
+  long long length = 16384;
+  const int down[9][2] = {{1, w}, {w, 2 * w}, {2 * w, 4 * w}, {4 * w, 8 * w}, {8 * w, 8 * w},
+                          {8 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w}};
+  for (int i = 0; i < 9; ++i) {
+    if (i < 4) length /= 4;
+    macs += double(length) * down[i][0] * down[i][1] * k;
+  }
+  const int up[4][2] = {{8 * w, m[0] * w}, {m[0] * w, m[1] * w}, {m[1] * w, m[2] * w}, {m[2] * w, 1}};
+  for (int i = 0; i < 4; ++i) {
+    macs += double(length) * up[i][0] * up[i][1] * k;  // input length x taps
+    length *= 4;
+  }
+  return 2.0 * macs / 1e9;
+}
+
+std::string arg(int argc, char** argv, const std::string& name, const std::string& fallback) {
+  const std::string prefix = "--" + name + "=";
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], prefix.c_str(), prefix.size()) == 0) return argv[i] + prefix.size();
+  }
+  return fallback;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int width = std::atoi(arg(argc, argv, "width", "64").c_str());
+  const std::string decoder = arg(argc, argv, "decoder", "original");
+  const int batch = std::atoi(arg(argc, argv, "batch", "16").c_str());
+  const int threads = std::atoi(arg(argc, argv, "threads", "2").c_str());
+  const int reps = std::atoi(arg(argc, argv, "reps", "5").c_str());
+  const std::string precision = arg(argc, argv, "precision", "float32");
+  tsrir::set_openblas_threads(1);
+  tsrir::gan::set_torch_threads(threads);
+  torch::manual_seed(1);
+  tsrir::gan::Generator g(width, 25, tsrir::gan::InitKind::kHe, decoder);
+  g->eval();
+  const auto dtype = precision == "bfloat16" ? torch::kBFloat16 : torch::kFloat32;
+  g->to(dtype);
+  c10::InferenceMode inference;
+  const torch::Tensor x = (torch::rand({batch, 1, 16384}) * 2 - 1).to(dtype);
+  g->forward(x);  // warm-up: oneDNN primitive creation
+  std::vector<double> seconds;
+  for (int r = 0; r < reps; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    g->forward(x);
+    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(seconds.begin(), seconds.end());
+  const double s = seconds[seconds.size() / 2];
+  const double gflop = generator_gflop(width, decoder, 25);
+  std::printf("| %d | %s | %d | %d | %s | %.1f | %.2f | %.1f | %.2f | %.0f |\n", width, decoder.c_str(), batch,
+              threads, precision.c_str(), tsrir::gan::count_parameters(*g) / 1e6, gflop, 1000.0 * s,
+              batch / s, gflop * batch / s);
+  return 0;
+}
