@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
         "steps start with an output that depends on the input (with Glorot the 13 un-normalised ReLU\n"
         "layers shrink the signal ~3e-4); --rmsprop-initial-ms=0 starts RMSProp's mean square at 0\n"
         "(torch/Keras) instead of TF1's 1, which makes the first ~130 steps almost no-ops;\n"
+        "--warmup-steps=N ramps the learning rate over N steps (without it, RMSProp's first updates\n"
+        "can switch whole ReLU layers of a small generator off for good: a constant output);\n"
         "--cycle-weight/--identity-weight change the L1 weights; --decoder=light builds the lighter\n"
         "up path that the original's code comments describe (its code builds --decoder=original).\n"
         "\n"

@@ -310,6 +310,10 @@ TEST_F(GanCli, LightDecoderAndBfloat16) {
   EXPECT_NE(r.err.find("--precision=bfloat16"), std::string::npos) << r.err;
   ASSERT_EQ(run(train("--steps=3 --resume --decoder=light --precision=bfloat16", "m"), dir_).status, 0);
   EXPECT_EQ(loss_rows(dir_ + "/m/loss_log.csv").size(), 3u);
+  r = run(train("--steps=4 --resume --decoder=light --precision=bfloat16 --warmup-steps=5", "m"), dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("--warmup-steps=0"), std::string::npos) << r.err;
+  EXPECT_NE(run(train("--steps=1 --warmup-steps=-1", "m3"), dir_).status, 0);
   EXPECT_NE(run(train("--steps=1 --decoder=heavy", "m2"), dir_).err.find("original or light"), std::string::npos);
   EXPECT_NE(run(train("--steps=1 --precision=half", "m2"), dir_).err.find("float32 or bfloat16"), std::string::npos);
 

@@ -3,8 +3,8 @@
 // "real" domain has; they share the controls (onset delay, broadband decay). A small model is
 // trained for a bounded number of CPU steps through the real programs, then held-out RIRs are
 // translated both ways and measured with the toolkit's own metrics (rir_metrics). Asserted: G_SR
-// moves the mode level toward the real domain and keeps each RIR's onset (the control); G_RS is
-// reported only (it is not the paper's use, and in the runs measured it did not follow its input).
+// moves the mode level toward the real domain and keeps each RIR's onset (the control), and G_RS
+// moves real RIRs' mode level toward the synthetic domain.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -56,33 +56,38 @@ int run(const std::string& command) {
   return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
 }
 
-// Bounds. The untranslated input (identity baseline) moves the effect 0 of the gap; the runs that
-// learned moved it 0.95-1.16, so half the gap separates the two. The onset bound is 0.3 of the best
-// input-independent median error (16.2 ms here, so ~4.9 ms, 1/15 of the 5-80 ms spread): no
-// generator that ignores its input can reach it; the input-following runs measured 3.4-4.1 ms.
+// Bounds. The untranslated input (identity baseline) moves the effect 0 of the gap; with the
+// test's options every seed tried moved it 1.14-1.15 (G_SR) and 0.76-1.44 (G_RS), so half the gap
+// separates learning from not learning. The onset bound is 0.5 of the best input-independent
+// median error (16.2 ms here, ~8.1 ms): no generator that ignores its input can go below 1.0 of it
+// (a collapsed, constant output gives ~43 ms); the six seeds tried measured 2.8-7.1 ms.
 constexpr double kMinMovedFraction = 0.5;
-constexpr double kMaxOnsetErrorFraction = 0.3;
+constexpr double kMaxOnsetErrorFraction = 0.5;
 
 }  // namespace
 
-// Runs by default: one CPU thread, 700 steps, ~75 s on an idle core. Training options, chosen by
-// measurement (bench/RESULTS.md, "TS-RIRGAN learning test"), with three documented departures from
+// Runs by default: one CPU thread, 700 steps, ~80 s on an idle core. Training options, chosen by
+// measurement (bench/RESULTS.md, "TS-RIRGAN learning test"), with four documented departures from
 // the original (ts-rirgan-train --help), all needed to learn within a CI budget:
 //  - --init=he: with Glorot the 13 un-normalised ReLU layers shrink the signal ~3e-4 and the
 //    output is a near-constant for hundreds of steps;
 //  - --rmsprop-initial-ms=0: TF1's mean-square slot starts at 1, so with gradients ~1e-3 the
 //    first ~130 updates are ~1000x smaller than the learning rate;
+//  - --warmup-steps=200: without it, RMSProp's first updates move every bias by ~lr whatever its
+//    gradient, while peak-normalised RIRs (RMS ~0.03) keep hidden activations ~1e-2: in 2 of 4
+//    seeds whole ReLU layers of a generator switched off within 25 steps for good (a constant
+//    output). With the warm-up none of 6 seeds collapsed;
 //  - L1 weights x10 (cycle 2500, identity 1750), i.e. the adversarial term at 1/10 of the
 //    original's relative weight: at 1x (width 4, 300-600 steps, lr 1e-4..1e-3, batch 2-4) every
 //    run gave input-independent output (translated onset error 36-39 ms).
-// Seed-to-seed spread with these options (CPU training is deterministic per seed and thread
-// count, so the test pins --seed=1): seeds 1 and 2 pass (effect 1.15 / 1.16 of the gap, onset
-// 3.4 / 4.1 ms); seed 3 learns the effect (0.95) but its onset error is 9.8 ms; seed 4 collapses
-// (G_SR output near silent). A different CPU (other oneDNN kernels) may take another trajectory.
+// Seed-to-seed spread with these options (bench/gan/learning_seeds.sh): seeds 1-6 all pass (G_SR
+// effect 1.14-1.15 of the gap, onset error 2.8-7.1 ms); CPU training is deterministic per seed
+// and thread count, so the test pins --seed=1. Another CPU (other oneDNN kernels) takes another
+// trajectory, which is why the bounds keep a margin over the worst seed.
 // TSRIR_GAN_LEARNING_ARGS replaces these options; TSRIR_GAN_LEARNING_KEEP=1 keeps the work dir.
 constexpr const char* kTrainArgs =
-    "--init=he --rmsprop-initial-ms=0 --cycle-weight=2500 --identity-weight=1750 --width=4 "
-    "--batch-size=2 --learning-rate=3e-4 --seed=1 --steps=700";
+    "--init=he --rmsprop-initial-ms=0 --warmup-steps=200 --cycle-weight=2500 --identity-weight=1750 "
+    "--width=4 --batch-size=2 --learning-rate=3e-4 --seed=1 --steps=700";
 
 TEST(GanLearning, TranslationMovesTheHiddenEffectAndKeepsTheOnset) {
   const char* args_env = std::getenv("TSRIR_GAN_LEARNING_ARGS");
@@ -122,14 +127,17 @@ TEST(GanLearning, TranslationMovesTheHiddenEffectAndKeepsTheOnset) {
   const SetStats sr = measure_set(d + "/sr/rir.scp"), rs = measure_set(d + "/rs/rir.scp");
   const double gap_db = real.mode_band_db - syn.mode_band_db;
   const double moved = (sr.mode_band_db - syn.mode_band_db) / gap_db;
+  const double moved_back = (real.mode_band_db - rs.mode_band_db) / gap_db;
   std::cerr << "250 Hz band level re broadband (dB): synthetic " << syn.mode_band_db << ", real "
             << real.mode_band_db << ", G_SR(synthetic) " << sr.mode_band_db << " (moved " << moved
-            << " of the gap), G_RS(real) " << rs.mode_band_db << " (reported, not asserted)\n";
+            << " of the gap), G_RS(real) " << rs.mode_band_db << " (moved " << moved_back << " back)\n";
   // The domains really differ (the generator is independent code; guard its parameters).
   ASSERT_GT(gap_db, 10.0);
   // Effect: G_SR moves held-out synthetic RIRs toward the real domain's mode level by at least
   // kMinMovedFraction of the gap; the untranslated input (identity baseline) moves 0.
   EXPECT_GT(moved, kMinMovedFraction);
+  // And G_RS removes it from held-out real RIRs.
+  EXPECT_GT(moved_back, kMinMovedFraction);
 
   // Control: the onset (ISO 20 dB onset) of each translated RIR stays where its input had it. The
   // baseline is the best a generator that ignores its input could do: one onset for all, at the
