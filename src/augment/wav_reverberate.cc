@@ -1,12 +1,12 @@
 #include "augment/wav_reverberate.h"
 
-#include <cstdio>
+#include <algorithm>
 #include <memory>
 
 #include "augment/reverberate_stream.h"
 #include "augment/temp_file.h"
+#include "augment/wav_sink.h"
 #include "io/audio_io.h"
-#include "io/shell.h"
 #include "util/cli.h"
 #include "util/error.h"
 #include "util/strings.h"
@@ -29,31 +29,24 @@ const std::vector<float>& channel_of(const std::vector<std::vector<float>>& chan
   return channels[static_cast<size_t>(index)];
 }
 
+// 16-bit WAV to a file (atomically), stdout or a pipe: the one writer of the streaming path too,
+// fed in interleaved blocks.
 void write_output(const std::string& wx, const std::vector<std::vector<float>>& channels,
                   double sample_rate_hz, long long* clipped) {
-  AudioWriteOptions write_options;
-  write_options.clipped_samples = clipped;
-  const std::string target = trim(wx);
-  if (target == "-" || starts_with(target, "|")) {
-    std::vector<char> bytes = encode_wav(channels, sample_rate_hz, write_options);
-    FILE* out = stdout;
-    FILE* pipe = nullptr;
-    if (target != "-") {
-      std::string command = "/bin/bash -c " + shell_quote(trim(target.substr(1)));
-      pipe = popen(command.c_str(), "w");
-      if (!pipe) throw Error("cannot start output pipe '" + target + "'");
-      out = pipe;
-    }
-    size_t written = std::fwrite(bytes.data(), 1, bytes.size(), out);
-    int flush_status = std::fflush(out);
-    int pipe_status = pipe ? pclose(pipe) : 0;
-    if (written != bytes.size() || flush_status != 0)
-      throw Error("write error on output '" + target + "'");
-    if (pipe_status != 0)
-      throw Error("output pipe '" + target + "' failed with status " + std::to_string(pipe_status));
-    return;
+  const size_t frames = channels.empty() ? 0 : channels[0].size();
+  const size_t num_channels = channels.size();
+  WavSink sink(wx, static_cast<int>(num_channels), frames, sample_rate_hz, SampleFormat::kInt16);
+  constexpr size_t kBlockFrames = 16384;
+  std::vector<float> block;
+  for (size_t start = 0; start < frames; start += kBlockFrames) {
+    const size_t n = std::min(kBlockFrames, frames - start);
+    block.resize(n * num_channels);
+    for (size_t i = 0; i < n; ++i)
+      for (size_t c = 0; c < num_channels; ++c) block[i * num_channels + c] = channels[c][start + i];
+    sink.write(block.data(), n);
   }
-  write_wav_channels(target, channels, sample_rate_hz, write_options);
+  sink.commit();
+  *clipped = sink.clipped_samples();
 }
 
 }  // namespace

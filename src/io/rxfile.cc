@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,11 +22,15 @@ std::string where(const std::string& rx, const std::string& context) {
   return context.empty() ? rx : context + ": " + rx;
 }
 
-std::vector<char> read_stream(std::istream& in) {
-  std::vector<char> data;
-  char buf[1 << 16];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) data.insert(data.end(), buf, buf + in.gcount());
-  return data;
+void read_stream(std::istream& in, const ByteSink& sink) {
+  std::vector<char> buf(1 << 16);
+  while (in.read(buf.data(), static_cast<std::streamsize>(buf.size())) || in.gcount() > 0) {
+    sink(buf.data(), static_cast<size_t>(in.gcount()));
+  }
+}
+
+ByteSink append_to(std::vector<char>& data) {
+  return [&data](const char* p, size_t n) { data.insert(data.end(), p, p + n); };
 }
 
 }  // namespace
@@ -36,6 +41,12 @@ bool is_pipe_rxfilename(const std::string& rx) {
 }
 
 std::vector<char> run_command_capture(const std::string& command, const std::string& context) {
+  std::vector<char> out;
+  run_command_stream(command, append_to(out), context);
+  return out;
+}
+
+void run_command_stream(const std::string& command, const ByteSink& sink, const std::string& context) {
   int out_pipe[2], err_pipe[2];
   if (pipe(out_pipe) != 0 || pipe(err_pipe) != 0) throw Error("pipe() failed: " + std::string(std::strerror(errno)));
   pid_t pid = fork();
@@ -52,7 +63,6 @@ std::vector<char> run_command_capture(const std::string& command, const std::str
   }
   close(out_pipe[1]);
   close(err_pipe[1]);
-  std::vector<char> out;
   std::string err;
   struct pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
   int open_fds = 2;
@@ -66,8 +76,21 @@ std::vector<char> run_command_capture(const std::string& command, const std::str
       if (f.fd < 0 || !(f.revents & (POLLIN | POLLHUP | POLLERR))) continue;
       ssize_t n = read(f.fd, buf, sizeof buf);
       if (n > 0) {
-        if (f.fd == out_pipe[0])
-          out.insert(out.end(), buf, buf + n);
+        if (f.fd == out_pipe[0]) {
+          try {
+            sink(buf, static_cast<size_t>(n));
+          } catch (...) {
+            // The sink gave up (e.g. disk full): stop the command and reap it, then report.
+            kill(pid, SIGTERM);
+            for (auto& g : fds) {
+              if (g.fd >= 0) close(g.fd);
+            }
+            int ignored = 0;
+            while (waitpid(pid, &ignored, 0) < 0 && errno == EINTR) {
+            }
+            throw;
+          }
+        }
         else if (err.size() < 8192)
           err.append(buf, static_cast<size_t>(n));
       } else if (n == 0 || (n < 0 && errno != EINTR)) {
@@ -90,21 +113,26 @@ std::vector<char> run_command_capture(const std::string& command, const std::str
                 (err.empty() ? "" : "; its stderr: " + trim(err)));
   }
   if (!err.empty()) std::cerr << err;
-  return out;
 }
 
-std::vector<char> read_rxfile(const std::string& rx, const std::string& context) {
+void stream_rxfile(const std::string& rx, const ByteSink& sink, const std::string& context) {
   std::string t = trim(rx);
   if (t.empty()) throw Error((context.empty() ? std::string("") : context + ": ") + "empty file name");
-  if (t == "-") return read_stream(std::cin);
+  if (t == "-") return read_stream(std::cin, sink);
   if (t.back() == '|') {
     std::string cmd = trim(t.substr(0, t.size() - 1));
     if (cmd.empty()) throw Error(where(rx, context) + ": empty pipe command");
-    return run_command_capture(cmd, context);
+    return run_command_stream(cmd, sink, context);
   }
   std::ifstream in(rx, std::ios::binary);
   if (!in) throw Error(where(rx, context) + ": cannot open: " + std::strerror(errno));
-  return read_stream(in);
+  read_stream(in, sink);
+}
+
+std::vector<char> read_rxfile(const std::string& rx, const std::string& context) {
+  std::vector<char> data;
+  stream_rxfile(rx, append_to(data), context);
+  return data;
 }
 
 }  // namespace tsrir
