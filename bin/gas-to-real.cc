@@ -2,6 +2,7 @@
 #include <string>
 
 #include "gan/ts_rirgan.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 #include "util/error.h"
 #include "util/strings.h"
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
     cli.option("precision", &o.precision,
                "float32, or bfloat16: ~2.5x faster on CPUs with AVX512-BF16/AMX (slower without), "
                "output within ~1% RMS of float32");
+    tsrir::register_output_options(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);
     if (model.empty()) throw tsrir::Error("--model is required");
     o.model = model;

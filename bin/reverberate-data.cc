@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "augment/reverberate_data.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 #include "util/strings.h"
 
@@ -125,6 +126,7 @@ int main(int argc, char** argv) {
         join_boolean_values(argc, argv, {"shift-output", "normalize-output", "include-original-data"});
     std::vector<const char*> cargs;
     for (const auto& a : args) cargs.push_back(a.c_str());
+    tsrir::register_output_options(&cl);
     std::vector<std::string> dirs = cl.parse(static_cast<int>(cargs.size()), cargs.data(), 2, 2);
     o.snr_reference = tsrir::parse_snr_reference(snr_reference);
     o.random_seed = static_cast<uint64_t>(seed);

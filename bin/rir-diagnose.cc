@@ -5,6 +5,7 @@
 
 #include "diagnose/diagnose.h"
 #include "diagnose/measured_set.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 #include "util/error.h"
 #include <iostream>
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     cli.option("model", &options.baseline_model, "baseline model (rir-simulate --model syntax)");
     cli.option("seed", &seed, "seed of the simulations (seed, seed+1 for the null calibration, seed+2 for evaluation)");
     cli.option("num-threads", &options.num_threads, "threads");
+    register_output_options(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 3, 3);
     options.seed = static_cast<uint64_t>(static_cast<int64_t>(seed));
     if (options.num_threads < 1) throw Error("--num-threads must be at least 1");

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "eq/eq_set.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 #include "util/error.h"
 
@@ -180,6 +181,7 @@ int apply_main(int argc, const char* const* argv) {
   add_apply_options(cl, s);
   cl.option("seed", &s.seed, "Seed of the target-gain draws (one stream per RIR id)");
   cl.option("num-threads", &s.num_threads, "Threads");
+  register_output_options(&cl);
   const auto args = cl.parse(argc, argv, 3, 3);
   const ApplySetOptions options = apply_options(s);
   const EqModel model = load_eq_model(args[0]);

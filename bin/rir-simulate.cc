@@ -5,6 +5,7 @@
 #include "sim/model.h"
 #include "sim/room_list.h"
 #include "sim/simulate.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 
 int main(int argc, char** argv) {
@@ -34,7 +35,9 @@ int main(int argc, char** argv) {
     cli.option("seed", &seed, "random seed of the stochastic parts");
     cli.option("num-threads", &options.num_threads, "threads (RIRs are rendered in parallel)");
     cli.option("format", &format, "output sample format: int16 | float");
+    register_output_options(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 2, 2);
+    note_input(args[0]);
     options.format = parse_sample_format(format);
     options.seed = static_cast<uint64_t>(static_cast<int64_t>(seed));
     const std::vector<sim::RoomSpec> rooms = sim::read_room_list(args[0]);

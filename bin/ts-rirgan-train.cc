@@ -2,6 +2,7 @@
 #include <string>
 
 #include "gan/ts_rirgan.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 
 int main(int argc, char** argv) {
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
                "float32 (the original) or bfloat16: CPU autocast, bfloat16 convolutions with float32 "
                "weights, gradients and losses; ~2x faster on CPUs with AVX512-BF16/AMX");
     cli.option("progress-interval", &o.progress_interval_s, "Seconds between progress lines on stderr");
+    tsrir::register_output_options(&cli);
     const auto args = cli.parse(argc, argv, 1, 1);
     o.model_dir = args[0];
     const tsrir::GanTrainResult r = tsrir::train_ts_rirgan(o);

@@ -19,6 +19,7 @@
 #include "io/audio_io.h"
 #include "io/data_dir.h"
 #include "io/kaldi_table.h"
+#include "io/owned_output.h"
 #include "io/rxfile.h"
 #include "util/cli.h"
 #include "util/error.h"
@@ -162,7 +163,12 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   }
   resolve_noise_offsets(noise_duration_s, &plans);
 
-  AtomicOutputDir out(out_dir);
+  // Every input, so that no output lands on one (io/owned_output.h).
+  note_input(in_dir);
+  for (const auto& [id, rx] : input.wav_scp) note_input(rx);
+  for (const RirChoice& r : sources.rirs) note_input(r.rxfilename);
+  for (const NoiseChoice& n : sources.noises) note_input(n.rxfilename);
+  OwnedOutputDir out(out_dir);
   DataDir output;
   ReverberateDataSummary summary;
   for (const RecordingPlan& plan : plans) {
@@ -170,7 +176,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     summary.with_noise += plan.noise >= 0;
   }
 
-  std::unique_ptr<AtomicOutputDir> separate_wav_dir;
+  std::unique_ptr<OwnedOutputDir> wav_dir;
   if (options.write_wavs.empty()) {
     // Pipes: fail now, not inside a feature-extraction job, on RIR files that cannot be read.
     for (long r : used_rirs) {
@@ -184,17 +190,16 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     pipe.snr_reference = options.snr_reference;
     for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = format_pipe(plan, sources, pipe);
   } else {
-    std::string temp_wav_dir;
     const std::string final_wav_dir = absolute_path(options.write_wavs);
-    if (path_is_inside(final_wav_dir, out_dir)) {
-      temp_wav_dir = out.path() + final_wav_dir.substr(absolute_path(out_dir).size());
-    } else {
-      if (path_is_inside(out_dir, final_wav_dir) || absolute_path(out_dir) == final_wav_dir)
-        throw Error("--write-wavs directory " + options.write_wavs + " must not contain the output data dir");
-      separate_wav_dir = std::make_unique<AtomicOutputDir>(final_wav_dir);
-      temp_wav_dir = separate_wav_dir->path();
-    }
-    fs::create_directories(temp_wav_dir);
+    if (path_is_inside(out_dir, final_wav_dir))
+      throw Error("--write-wavs directory " + options.write_wavs + " must not contain the output data dir");
+    // The wavs belong to this data dir: another data dir's wavs in a shared --write-wavs directory
+    // are never replaced (it would point at different audio) unless --overwrite.
+    wav_dir = std::make_unique<OwnedOutputDir>(options.write_wavs, out_dir);
+    std::vector<std::string> wav_names;
+    for (const RecordingPlan& plan : plans) wav_names.push_back(plan.new_id + ".wav");
+    wav_dir->check_names(wav_names);
+    const std::string temp_wav_dir = wav_dir->path();
 
     ReverbOptions reverb;
     reverb.shift_output = options.shift_output;
@@ -312,7 +317,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     for (const std::string& p : problems) message += "\n  " + p;
     throw Error(message);
   }
-  if (separate_wav_dir) separate_wav_dir->commit();
+  if (wav_dir) wav_dir->commit();
   out.commit();
   summary.recordings = output.wav_scp.size();
   summary.utterances = output.utt2spk.size();

@@ -10,6 +10,7 @@
 #include "diagnose/report_html.h"
 #include "diagnose/set_statistics.h"
 #include "io/atomic_output.h"
+#include "io/owned_output.h"
 #include "io/audio_io.h"
 #include "sim/extension_components.h"
 #include "sim/model.h"
@@ -354,7 +355,7 @@ std::string diagnosis_summary(const Diagnosis& d) {
 }
 
 std::string write_diagnosis(const Diagnosis& d, const std::string& out_dir, const std::string& command_line) {
-  AtomicOutputDir dir(out_dir);
+  OwnedOutputDir dir(out_dir);
   {
     std::ofstream json(dir.path() + "/findings.json");
     write_findings_json(d, json);

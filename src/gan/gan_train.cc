@@ -388,6 +388,9 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   BatchSampler synthetic(o.seed, "synthetic",
                          load_domain(o.synthetic_list, "synthetic", o.batch_size, o.num_threads));
 
+  // The model dir is the toolkit's: never one holding a user's files, never an input (its lists were
+  // noted as inputs while loading the domains).
+  claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
   torch::manual_seed(o.seed);
   CycleGan model(settings, device);
   GanTrainResult result;

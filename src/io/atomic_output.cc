@@ -1,7 +1,5 @@
 #include "io/atomic_output.h"
 
-#include <pthread.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -73,59 +71,6 @@ void AtomicTextFile::commit() {
   if (!file_) throw Error("error writing " + final_path_);
   file_.close();
   commit_temp_path(temp_path_, final_path_);
-  committed_ = true;
-}
-
-AtomicOutputDir::AtomicOutputDir(const std::string& final_dir) : final_dir_(final_dir) {
-  while (final_dir_.size() > 1 && final_dir_.back() == '/') final_dir_.pop_back();
-  if (final_dir_.empty()) throw Error("empty output directory name");
-  std::error_code ec;
-  fs::path parent = fs::path(final_dir_).parent_path();
-  if (!parent.empty()) fs::create_directories(parent, ec);
-  if (fs::exists(final_dir_) && !fs::is_directory(final_dir_)) {
-    throw Error(final_dir_ + " exists and is not a directory");
-  }
-  temp_dir_ = make_temp_path(final_dir_);
-  if (!fs::create_directory(temp_dir_, ec) || ec) {
-    unregister_temp_path(temp_dir_);
-    throw Error("cannot create directory " + temp_dir_ + ": " + ec.message());
-  }
-}
-
-AtomicOutputDir::~AtomicOutputDir() {
-  if (!committed_) discard_temp_path(temp_dir_);
-}
-
-void AtomicOutputDir::commit() {
-  std::error_code ec;
-  if (fs::exists(final_dir_)) {
-    // Move the old output aside first so the final name is never half-old, half-new. Ctrl-C
-    // between the two renames would make the handler delete both the new output and the old one
-    // (both are registered temporaries), so the interrupt waits until the new one is in place.
-    sigset_t block, saved;
-    sigemptyset(&block);
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, sig);
-    pthread_sigmask(SIG_BLOCK, &block, &saved);
-    std::string old = make_temp_path(final_dir_ + ".old");
-    fs::rename(final_dir_, old, ec);
-    if (ec) {
-      unregister_temp_path(old);
-      pthread_sigmask(SIG_SETMASK, &saved, nullptr);
-      throw Error("cannot replace " + final_dir_ + ": " + ec.message());
-    }
-    try {
-      commit_temp_path(temp_dir_, final_dir_);
-    } catch (...) {
-      fs::rename(old, final_dir_, ec);  // put the previous output back
-      unregister_temp_path(old);
-      pthread_sigmask(SIG_SETMASK, &saved, nullptr);
-      throw;
-    }
-    pthread_sigmask(SIG_SETMASK, &saved, nullptr);
-    discard_temp_path(old);
-  } else {
-    commit_temp_path(temp_dir_, final_dir_);
-  }
   committed_ = true;
 }
 

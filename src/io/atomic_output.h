@@ -33,23 +33,7 @@ class AtomicTextFile {
   bool to_stdout_ = false, committed_ = false;
 };
 
-// An output directory built under a temporary name and swapped into place on commit.
-// If the final directory exists, it is replaced only at commit (the old one is moved aside and
-// removed after the rename), so a failed run leaves the previous output untouched.
-class AtomicOutputDir {
- public:
-  explicit AtomicOutputDir(const std::string& final_dir);
-  ~AtomicOutputDir();
-  const std::string& path() const { return temp_dir_; }   // write files here
-  const std::string& final_path() const { return final_dir_; }
-  void commit();
-  AtomicOutputDir(const AtomicOutputDir&) = delete;
-  AtomicOutputDir& operator=(const AtomicOutputDir&) = delete;
-
- private:
-  std::string final_dir_, temp_dir_;
-  bool committed_ = false;
-};
+// Output directories: io/owned_output.h (OwnedOutputDir), which never replaces a whole directory.
 
 // Absolute, normalised form of a path (no symlink resolution); used when writing paths into tables.
 std::string absolute_path(const std::string& path);

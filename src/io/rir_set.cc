@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <set>
 
 #include "io/kaldi_lists.h"
 #include "io/kaldi_table.h"
 #include "io/shell.h"
+#include "util/cli.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -24,6 +26,38 @@ bool has_audio_extension(const std::string& path) {
          ext == ".au" || ext == ".w64" || ext == ".rf64" || ext == ".caf" || ext == ".opus";
 }
 
+// The first line that is not blank: an scp's does not start with "--" (kaldi_lists.h).
+bool is_scp_form(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::string t = trim(line);
+    if (!t.empty()) return t.rfind("--", 0) != 0;
+  }
+  return false;
+}
+
+void take_rooms_from_list_beside(const std::string& scp, std::vector<RirRef>* refs) {
+  const std::string list = (fs::path(scp).parent_path() / "rir_list").string();
+  if (fs::absolute(list).lexically_normal() == fs::absolute(scp).lexically_normal()) return;
+  if (!fs::is_regular_file(list) || is_scp_form(list)) {
+    if (refs->size() > 1)
+      log_warning(scp + ": an scp gives no room ids and there is no rir_list beside it: each of its " +
+                  std::to_string(refs->size()) + " RIRs is taken as its own room (give the rir_list to keep rooms)");
+    return;
+  }
+  std::map<std::string, std::string> room_of;
+  for (const auto& e : read_rir_list(list)) room_of[e.rir_id] = e.room_id;
+  for (RirRef& r : *refs) {
+    auto it = room_of.find(r.id);
+    if (it == room_of.end())
+      throw Error(r.where + ": RIR '" + r.id + "' is not in " + list +
+                  ", the rir_list beside this scp that gives its RIRs' rooms; give a rir_list instead of the scp, " +
+                  "or make the two lists agree");
+    r.room_id = it->second;
+  }
+}
+
 }  // namespace
 
 std::vector<RirRef> read_rir_refs(const std::string& path) {
@@ -36,16 +70,20 @@ std::vector<RirRef> read_rir_refs(const std::string& path) {
     r.rxfilename = path;
     r.where = path;
     refs.push_back(r);
+    note_input(path);
     return refs;
   }
+  note_input(path);
   for (const auto& e : read_rir_list(path)) {
     RirRef r;
     r.id = e.rir_id;
     r.room_id = e.room_id;
     r.rxfilename = e.rxfilename;
     r.where = path + ":" + std::to_string(e.line);
+    note_input(r.rxfilename);
     refs.push_back(std::move(r));
   }
+  if (!refs.empty() && is_scp_form(path)) take_rooms_from_list_beside(path, &refs);
   return refs;
 }
 

@@ -1,6 +1,11 @@
 // Sets of RIRs as the programs read and write them. Input: a Kaldi scp (<id> <rxfilename>), a
 // Kaldi rir_list (--rir-id ... <rxfilename>), or a single audio file (id = file name without
-// extension). Output: <dir>/<id>.wav, <dir>/rir.scp and <dir>/rir_list, written as one unit.
+// extension). Output: <dir>/<id>.wav, <dir>/rir.scp and <dir>/rir_list, written as one unit into a
+// directory owned by the toolkit (io/owned_output.h: never a directory it did not write, never an
+// input, never deleting another's files).
+// Room ids travel with the RIRs whichever list form is given: an scp has none, so the rir_list
+// beside it (same directory, as every program here writes them) gives them; without one, each RIR
+// is its own room and a warning says so.
 #pragma once
 #include <mutex>
 #include <set>
@@ -9,26 +14,29 @@
 
 #include "io/audio_io.h"
 #include "io/atomic_output.h"
+#include "io/owned_output.h"
 #include "io/signal.h"
 
 namespace tsrir {
 
 struct RirRef {
   std::string id;
-  std::string room_id;      // from a rir_list; = id otherwise
+  std::string room_id;      // from a rir_list (given, or beside the scp); = id otherwise
   std::string rxfilename;
   std::string where;        // "file:line" (or the file name) for messages
 };
 
 // Detects the kind of `path` as described above. Errors: missing file, malformed lines,
-// duplicate ids (each with file:line).
+// duplicate ids (each with file:line), an scp id missing from the rir_list beside it. Notes the
+// list and every file it points at as inputs (io/owned_output.h).
 std::vector<RirRef> read_rir_refs(const std::string& path);
 
 // Loads one RIR (resampled if options.target_rate_hz > 0); the Signal's id is ref.id. Errors name
 // the id and where it was listed.
 Signal load_rir(const RirRef& ref, const AudioReadOptions& options = {});
 
-// Writes a complete RIR set into out_dir (replaced atomically at commit()).
+// Writes a complete RIR set into out_dir: its files appear at commit(); files of an earlier run of
+// the same program there are replaced, nothing else is touched.
 class RirSetWriter {
  public:
   RirSetWriter(const std::string& out_dir, SampleFormat format);
@@ -38,7 +46,7 @@ class RirSetWriter {
   const std::string& temp_dir() const { return dir_.path(); }
 
  private:
-  AtomicOutputDir dir_;
+  OwnedOutputDir dir_;
   SampleFormat format_;
   struct Row { std::string id, room_id; };
   std::vector<Row> rows_;

@@ -167,7 +167,8 @@ TEST_F(AudioIo, RirSetWriterIsAtomicAndWritesKaldiLists) {
     w.add(Signal{"a", 16000, {1.0f, 0.25f}});
     EXPECT_THROW(w.add(Signal{"a", 16000, {1.0f}}), Error);
     EXPECT_THROW(w.add(Signal{"x/y", 16000, {1.0f}}), Error);
-    EXPECT_FALSE(std::filesystem::exists(out));  // nothing under the final name before commit
+    EXPECT_FALSE(std::filesystem::exists(out + "/a.wav"));  // nothing under the final name before commit
+    EXPECT_FALSE(std::filesystem::exists(out + "/rir.scp"));
     w.commit();
   }
   EXPECT_TRUE(std::filesystem::exists(out + "/a.wav"));
@@ -179,6 +180,12 @@ TEST_F(AudioIo, RirSetWriterIsAtomicAndWritesKaldiLists) {
   EXPECT_EQ(b.samples[1], 0.5f);
   auto scp = read_rir_refs(out + "/rir.scp");
   EXPECT_EQ(scp[0].rxfilename, refs[0].rxfilename);
+  // The scp has no rooms: they come from the rir_list beside it.
+  EXPECT_EQ(scp[1].room_id, "room1");
+  EXPECT_EQ(scp[0].room_id, "a");
+  // The set was just read: it is an input now, and no writer may write over it.
+  EXPECT_THROW(RirSetWriter(out, SampleFormat::kInt16), Error);
+  clear_noted_inputs();
   {
     RirSetWriter w(out, SampleFormat::kInt16);
     w.add(Signal{"c", 16000, {0.5f}});

@@ -14,6 +14,7 @@
 #include "io/audio_io.h"
 #include "io/kaldi_lists.h"
 #include "io/kaldi_table.h"
+#include "io/owned_output.h"
 #include "io/rir_set.h"
 #include "io/rxfile.h"
 #include "io/shell.h"
@@ -217,16 +218,19 @@ TEST_F(HostileInput, ResamplingFailureIsNeverSilentZeros) {
 
 TEST_F(HostileInput, FailedDirectoryReplacementKeepsThePreviousOutput) {
   const std::string out = path("set");
-  fs::create_directories(out);
-  write_bytes(out + "/old.txt", "previous complete output");
   {
-    AtomicOutputDir dir(out);
+    OwnedOutputDir first(out);
+    write_bytes(first.path() + "/old.txt", "previous complete output");
+    first.commit();
+  }
+  {
+    OwnedOutputDir dir(out);
     write_bytes(dir.path() + "/new.txt", "new");
-    fs::remove_all(dir.path());  // the new output vanishes (disk cleaner, full disk...): rename fails
+    fs::remove_all(dir.path());  // the new output vanishes (disk cleaner, full disk...): commit fails
     EXPECT_THROW(dir.commit(), Error);
   }
   EXPECT_EQ(read_bytes(out + "/old.txt"), "previous complete output");
-  for (const auto& e : fs::directory_iterator(dir_))
+  for (const auto& e : fs::recursive_directory_iterator(dir_))
     EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
 }
 

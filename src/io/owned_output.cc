@@ -1,0 +1,470 @@
+#include "io/owned_output.h"
+
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+#include "io/atomic_output.h"
+#include "util/cli.h"
+#include "util/error.h"
+#include "util/strings.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir {
+
+const char* const kOwnedMarkerName = ".tsrir-owned";
+
+namespace {
+
+const std::string kStagingPrefix = ".tsrir-staging";
+
+// ---- inputs ---------------------------------------------------------------------------------
+
+struct ResolvedInput {
+  std::string shown;  // as the user gave it
+  std::string real;   // real path
+  bool is_dir = false;
+};
+
+struct InputRegistry {
+  std::mutex mutex;
+  std::vector<std::string> pending;
+  std::vector<ResolvedInput> resolved;
+  std::set<std::string> seen;
+  std::map<std::string, std::string> real_parent;  // parent dir -> its real path
+};
+
+InputRegistry& inputs() {
+  static InputRegistry r;
+  return r;
+}
+
+std::string real_parent_of(InputRegistry& r, const fs::path& p) {
+  const std::string parent = fs::absolute(p).parent_path().string();
+  auto it = r.real_parent.find(parent);
+  if (it != r.real_parent.end()) return it->second;
+  std::error_code ec;
+  std::string real = fs::weakly_canonical(parent, ec).string();
+  if (ec) real = fs::absolute(parent).lexically_normal().string();
+  r.real_parent[parent] = real;
+  return real;
+}
+
+// Resolves one existing path: where it is (its directory's real path + its name) and, for a
+// symlink, what it points at; both must stay out of every output.
+void resolve_path(InputRegistry& r, const std::string& path) {
+  std::error_code ec;
+  const fs::file_status link_status = fs::symlink_status(path, ec);
+  if (ec || !fs::exists(link_status)) return;
+  const fs::path p(path);
+  std::string name = p.filename().string();
+  if (name.empty() || name == "." || name == "..") {
+    const std::string real = fs::weakly_canonical(fs::absolute(p), ec).string();
+    if (!ec && r.seen.insert(real).second) r.resolved.push_back({path, real, fs::is_directory(real)});
+    return;
+  }
+  const std::string where = (fs::path(real_parent_of(r, p)) / name).string();
+  const bool is_dir = fs::is_directory(path, ec);
+  if (r.seen.insert(where).second) r.resolved.push_back({path, where, is_dir});
+  if (fs::is_symlink(link_status)) {
+    const std::string target = fs::canonical(path, ec).string();
+    if (!ec && r.seen.insert(target).second) r.resolved.push_back({path, target, is_dir});
+  }
+}
+
+void resolve_rx(InputRegistry& r, const std::string& rx) {
+  const std::string t = trim(rx);
+  if (t.empty() || t == "-") return;
+  if (t.back() != '|') {
+    // Kaldi's "file:offset" and "ark:" forms name a file too.
+    resolve_path(r, t);
+    const size_t colon = t.rfind(':');
+    if (colon != std::string::npos && colon > 0 && !fs::exists(t)) resolve_path(r, t.substr(0, colon));
+    return;
+  }
+  // A pipe: its arguments that are existing files ("sox in.wav -t wav - |", "cat a.wav |").
+  for (const std::string& token : split_whitespace(t.substr(0, t.size() - 1))) {
+    if (token.empty() || token[0] == '-' || token == "|") continue;
+    std::error_code ec;
+    if (fs::is_regular_file(token, ec)) resolve_path(r, token);
+  }
+}
+
+bool is_under(const std::string& path, const std::string& dir) {
+  if (dir == "/") return path.size() > 1 && path[0] == '/';
+  return path.size() > dir.size() && path.compare(0, dir.size(), dir) == 0 && path[dir.size()] == '/';
+}
+
+std::string real_output_path(const std::string& dir) {
+  std::error_code ec;
+  std::string real = fs::weakly_canonical(fs::absolute(dir), ec).string();
+  if (ec) real = fs::absolute(dir).lexically_normal().string();
+  while (real.size() > 1 && real.back() == '/') real.pop_back();
+  return real;
+}
+
+// ---- the marker -----------------------------------------------------------------------------
+
+struct MarkerEntry {
+  long long size = -1;
+  long long mtime_ns = -1;
+  std::string program, owner;  // owner "-" = the directory itself
+};
+using Marker = std::map<std::string, MarkerEntry>;  // file name -> entry
+
+std::string marker_path(const std::string& dir) { return (fs::path(dir) / kOwnedMarkerName).string(); }
+
+bool read_marker(const std::string& dir, Marker* marker) {
+  const std::string path = marker_path(dir);
+  std::ifstream in(path);
+  if (!in) return false;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f;
+    std::stringstream s(line);
+    std::string field;
+    while (std::getline(s, field, '\t')) f.push_back(field);
+    if (f.size() != 5) throw Error(path + ":" + std::to_string(line_number) + ": malformed line (5 tab-separated fields expected)");
+    MarkerEntry e;
+    try {
+      e.size = std::stoll(f[1]);
+      e.mtime_ns = std::stoll(f[2]);
+    } catch (...) {
+      throw Error(path + ":" + std::to_string(line_number) + ": malformed size or time");
+    }
+    e.program = f[3];
+    e.owner = f[4];
+    (*marker)[f[0]] = e;
+  }
+  return true;
+}
+
+void write_marker(const std::string& dir, const Marker& marker) {
+  AtomicTextFile out(marker_path(dir));
+  std::ostream& o = out.stream();
+  o << "# Files written into this directory by tsrir programs. A tsrir program creates, replaces or\n"
+       "# removes only the files listed here as its own; nothing else here is touched. Re-running the\n"
+       "# same command replaces its own files; a different output needs --overwrite (docs/robustness.md).\n"
+       "# <file>\t<size>\t<mtime_ns>\t<program>\t<output it belongs to ('-' = this directory)>\n";
+  for (const auto& [name, e] : marker)
+    o << name << '\t' << e.size << '\t' << e.mtime_ns << '\t' << e.program << '\t' << e.owner << '\n';
+  out.commit();
+}
+
+bool stat_file(const std::string& path, long long* size, long long* mtime_ns) {
+  struct stat st;
+  if (::lstat(path.c_str(), &st) != 0) return false;
+  *size = static_cast<long long>(st.st_size);
+  *mtime_ns = static_cast<long long>(st.st_mtim.tv_sec) * 1000000000LL + st.st_mtim.tv_nsec;
+  return true;
+}
+
+// An exclusive lock on a directory for as long as this lives (two runs sharing it take turns).
+class DirLock {
+ public:
+  explicit DirLock(const std::string& dir) {
+    fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0) throw Error("cannot open directory " + dir + ": " + std::strerror(errno));
+    while (::flock(fd_, LOCK_EX) != 0) {
+      if (errno != EINTR) {
+        ::close(fd_);
+        throw Error("cannot lock directory " + dir + ": " + std::strerror(errno));
+      }
+    }
+  }
+  ~DirLock() {
+    ::flock(fd_, LOCK_UN);
+    ::close(fd_);
+  }
+  DirLock(const DirLock&) = delete;
+  DirLock& operator=(const DirLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
+bool is_staging_name(const std::string& name) { return name.rfind(kStagingPrefix + ".tmp.", 0) == 0; }
+bool is_marker_temp(const std::string& name) { return name.rfind(std::string(kOwnedMarkerName) + ".tmp.", 0) == 0; }
+
+// Staging directories of runs that were killed (SIGKILL): ours by name; removed when their process
+// is gone.
+void remove_dead_staging(const std::string& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (!is_staging_name(name) && !is_marker_temp(name)) continue;
+    const size_t start = name.find(".tmp.") + 5;
+    const long pid = std::strtol(name.c_str() + start, nullptr, 10);
+    if (pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+      fs::remove_all(e.path(), ec);
+    }
+  }
+}
+
+std::string way_out(const std::string& dir) {
+  return "choose a new or empty directory, or pass --overwrite to write into " + dir +
+         " anyway (only files of the names this program writes are replaced; nothing else is touched)";
+}
+
+// The checks every claim makes: an input, a file in the way, a directory that is not ours.
+void check_claim(const std::string& dir) {
+  check_output_not_input(dir);
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (!fs::exists(st)) return;
+  if (!fs::is_directory(st)) throw Error("output directory " + dir + " exists and is not a directory");
+  if (fs::exists(marker_path(dir))) return;
+  remove_dead_staging(dir);
+  std::vector<std::string> others;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (is_staging_name(name) || is_marker_temp(name)) continue;
+    others.push_back(name);
+  }
+  if (!others.empty() && !output_policy().overwrite) {
+    std::sort(others.begin(), others.end());
+    throw Error("output directory " + dir + " is not empty (holds " + std::to_string(others.size()) + " entries, e.g. '" +
+                others[0] + "') and was not written by tsrir (no " + kOwnedMarkerName + "); " + way_out(dir));
+  }
+}
+
+// Creates `dir` and its missing parents; returns those it created, outermost first.
+std::vector<std::string> create_dirs(const std::string& dir) {
+  std::vector<std::string> missing;
+  fs::path p = fs::absolute(dir).lexically_normal();
+  std::error_code ec;
+  while (!p.empty() && !fs::exists(p, ec)) {
+    missing.push_back(p.string());
+    if (p == p.parent_path()) break;
+    p = p.parent_path();
+  }
+  std::reverse(missing.begin(), missing.end());
+  std::vector<std::string> created;
+  for (const std::string& m : missing) {
+    if (fs::create_directory(m, ec)) created.push_back(m);
+    if (ec) throw Error("cannot create directory " + m + ": " + ec.message());
+  }
+  if (!fs::is_directory(dir)) throw Error("cannot create directory " + dir);
+  return created;
+}
+
+std::string describe_writer(const MarkerEntry& e) {
+  return e.program + (e.owner == "-" ? std::string() : " for " + e.owner);
+}
+
+// Throws when writing `name` into `dir` as (program, owner) would replace what is not ours.
+void check_name(const std::string& dir, const Marker& marker, const std::string& name, const std::string& owner) {
+  if (output_policy().overwrite) return;
+  const std::string path = (fs::path(dir) / name).string();
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(path, ec))) return;
+  auto it = marker.find(name);
+  if (it == marker.end()) {
+    throw Error(path + " exists and was not written by tsrir (" + kOwnedMarkerName + " does not list it); " +
+                "it is left alone: " + way_out(dir));
+  }
+  const MarkerEntry& e = it->second;
+  if (e.program != output_policy().program || e.owner != owner) {
+    throw Error(path + " was written by " + describe_writer(e) + ", not by this " + output_policy().program +
+                (owner == "-" ? "" : " run for " + owner) + ": replacing it would change an output that " +
+                "something else may point at; " + way_out(dir));
+  }
+}
+
+std::string owner_key(const std::string& owner) { return owner.empty() ? "-" : absolute_path(owner); }
+
+class BlockSignals {
+ public:
+  BlockSignals() {
+    sigset_t block;
+    sigemptyset(&block);
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&block, sig);
+    pthread_sigmask(SIG_BLOCK, &block, &saved_);
+  }
+  ~BlockSignals() { pthread_sigmask(SIG_SETMASK, &saved_, nullptr); }
+
+ private:
+  sigset_t saved_;
+};
+
+}  // namespace
+
+OutputPolicy& output_policy() {
+  static OutputPolicy policy;
+  return policy;
+}
+
+void register_output_options(CommandLine* cli) {
+  output_policy().program = cli->program();
+  cli->flag("overwrite", &output_policy().overwrite,
+            "write into an output directory that tsrir did not write (or replace files another run "
+            "wrote there); only files of the names this program writes are replaced, nothing is deleted");
+}
+
+void note_input(const std::string& rx) {
+  InputRegistry& r = inputs();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.pending.push_back(rx);
+}
+
+void note_inputs(const std::vector<std::string>& rxs) {
+  InputRegistry& r = inputs();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.pending.insert(r.pending.end(), rxs.begin(), rxs.end());
+}
+
+void clear_noted_inputs() {
+  InputRegistry& r = inputs();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.pending.clear();
+  r.resolved.clear();
+  r.seen.clear();
+  r.real_parent.clear();
+}
+
+void check_output_not_input(const std::string& output_dir) {
+  InputRegistry& r = inputs();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (const std::string& rx : r.pending) resolve_rx(r, rx);
+  r.pending.clear();
+  const std::string out = real_output_path(output_dir);
+  for (const ResolvedInput& in : r.resolved) {
+    std::string why;
+    if (in.real == out) {
+      why = "is the input";
+    } else if (is_under(in.real, out)) {
+      why = "contains the input";
+    } else if (in.is_dir && is_under(out, in.real)) {
+      why = "lies inside the input directory";
+    } else {
+      continue;
+    }
+    throw Error("output directory " + output_dir + " " + why + " " + in.shown +
+                (in.real != in.shown ? " (real path " + in.real + ")" : "") +
+                ": a program never writes where its inputs are; choose an output directory outside every input");
+  }
+}
+
+OwnedOutputDir::OwnedOutputDir(const std::string& final_dir, const std::string& owner)
+    : final_dir_(final_dir), owner_(owner_key(owner)) {
+  while (final_dir_.size() > 1 && final_dir_.back() == '/') final_dir_.pop_back();
+  if (final_dir_.empty()) throw Error("empty output directory name");
+  check_claim(final_dir_);
+  created_dirs_ = create_dirs(final_dir_);
+  staging_dir_ = make_temp_path((fs::path(final_dir_) / kStagingPrefix).string());
+  std::error_code ec;
+  if (!fs::create_directory(staging_dir_, ec) || ec) {
+    unregister_temp_path(staging_dir_);
+    throw Error("cannot create directory " + staging_dir_ + ": " + ec.message());
+  }
+}
+
+OwnedOutputDir::~OwnedOutputDir() {
+  if (committed_) return;
+  discard_temp_path(staging_dir_);
+  std::error_code ec;
+  for (auto it = created_dirs_.rbegin(); it != created_dirs_.rend(); ++it) {
+    if (!fs::remove(*it, ec)) break;  // only empty directories go (never anything in them)
+  }
+}
+
+void OwnedOutputDir::check_names(const std::vector<std::string>& names) const {
+  Marker marker;
+  read_marker(final_dir_, &marker);
+  for (const std::string& n : names) check_name(final_dir_, marker, n, owner_);
+}
+
+void OwnedOutputDir::commit() {
+  if (committed_) throw Error("output " + final_dir_ + " committed twice");
+  std::vector<std::string> names;
+  std::error_code ec;
+  if (!fs::is_directory(staging_dir_, ec))
+    throw Error("the files being written to " + final_dir_ + " vanished (" + staging_dir_ + " is gone)");
+  for (const auto& e : fs::directory_iterator(staging_dir_)) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".tmp.") != std::string::npos) continue;  // a writer's own leftover temporary
+    if (!e.is_regular_file()) throw Error("internal: " + e.path().string() + " is not a plain file");
+    if (name.find_first_of("\t\n\r") != std::string::npos || name == kOwnedMarkerName)
+      throw Error("cannot write a file named '" + name + "' into " + final_dir_);
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  const std::set<std::string> new_names(names.begin(), names.end());
+  const std::string program = output_policy().program;
+
+  DirLock lock(final_dir_);
+  check_output_not_input(final_dir_);
+  Marker marker;
+  read_marker(final_dir_, &marker);
+  for (const std::string& n : names) check_name(final_dir_, marker, n, owner_);
+
+  BlockSignals block;  // an interrupt now would leave a half-committed set
+  // The marker lists the new files before they appear, so no file of ours is ever unlisted.
+  for (const std::string& n : names) marker[n] = MarkerEntry{-1, -1, program, owner_};
+  write_marker(final_dir_, marker);
+  for (const std::string& n : names) {
+    const std::string from = (fs::path(staging_dir_) / n).string(), to = (fs::path(final_dir_) / n).string();
+    fs::rename(from, to, ec);
+    if (ec) throw Error("cannot rename " + from + " to " + to + ": " + ec.message());
+    stat_file(to, &marker[n].size, &marker[n].mtime_ns);
+  }
+  // This writer's files from its previous run that it did not write again: removed when unchanged,
+  // otherwise (someone edited them) left and forgotten.
+  for (auto it = marker.begin(); it != marker.end();) {
+    const MarkerEntry& e = it->second;
+    if (new_names.count(it->first) || e.program != program || e.owner != owner_) {
+      ++it;
+      continue;
+    }
+    const std::string path = (fs::path(final_dir_) / it->first).string();
+    long long size = 0, mtime = 0;
+    if (stat_file(path, &size, &mtime)) {
+      if (size == e.size && mtime == e.mtime_ns) {
+        fs::remove(path, ec);
+      } else {
+        log_warning(path + " was written by an earlier run but changed since: left in place");
+      }
+    }
+    it = marker.erase(it);
+  }
+  write_marker(final_dir_, marker);
+  discard_temp_path(staging_dir_);
+  committed_ = true;
+}
+
+void claim_output_dir(const std::string& dir, const std::vector<std::string>& names) {
+  check_claim(dir);
+  create_dirs(dir);
+  DirLock lock(dir);
+  Marker marker;
+  read_marker(dir, &marker);
+  for (const std::string& n : names) check_name(dir, marker, n, "-");
+  bool changed = false;
+  for (const std::string& n : names) {
+    auto it = marker.find(n);
+    if (it == marker.end() || it->second.program != output_policy().program || it->second.owner != "-") {
+      marker[n] = MarkerEntry{-1, -1, output_policy().program, "-"};
+      changed = true;
+    }
+  }
+  if (changed || !fs::exists(marker_path(dir))) write_marker(dir, marker);
+}
+
+}  // namespace tsrir
