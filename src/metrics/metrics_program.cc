@@ -4,8 +4,8 @@
 #include <exception>
 
 #include "io/atomic_output.h"
-#include "util/cli.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/parallel.h"
 
 namespace tsrir {

@@ -6,8 +6,8 @@
 
 #include "io/rir_set.h"
 #include "sim/model.h"
-#include "util/cli.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/parallel.h"
 #include "util/strings.h"
 
