@@ -351,6 +351,17 @@ MetricsDefinition parse_metrics_definition(const std::string& name) {
   throw Error("unknown metrics definition '" + name + "' (expected iso or irstats)");
 }
 
+void MetricsOptions::Register(OptionsItf* opts) {
+  opts->RegisterEnum("definition", &definition,
+                     {{"iso", MetricsDefinition::kIso}, {"irstats", MetricsDefinition::kIrstats}},
+                     "definition of the parameters");
+  opts->Register("lundeby", &lundeby, "iso: noise-floor subtraction, Lundeby truncation and compensation");
+  opts->Register("direct-pre-ms", &direct_pre_ms, "iso: direct-sound window before the peak (ms)");
+  opts->Register("direct-post-ms", &direct_post_ms, "iso: direct-sound window after the peak (ms)");
+  opts->Register("clarity-ms", &clarity_time_ms, "early/late limit of the clarity index (ms)");
+  opts->Register("onset-db", &onset_threshold_db, "iso: onset = first sample within this many dB of the peak");
+}
+
 std::string metrics_definition_name(MetricsDefinition definition) {
   return definition == MetricsDefinition::kIso ? "iso" : "irstats";
 }

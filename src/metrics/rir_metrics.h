@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "io/signal.h"
+#include "util/options.h"
 
 namespace tsrir {
 
@@ -42,6 +43,8 @@ struct MetricsOptions {
   double clarity_time_ms = 50.0;
   // iso onset: first sample whose energy is within this many dB of the peak energy.
   double onset_threshold_db = 20.0;
+
+  void Register(OptionsItf* opts);
 };
 
 constexpr double kMetricsNaN = std::numeric_limits<double>::quiet_NaN();

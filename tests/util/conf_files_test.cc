@@ -24,6 +24,17 @@ const std::map<std::string, std::string> kReaders = {
     {"reverberate.conf", "reverberate-data"},
 };
 
+std::string slurp(const std::string& path) {
+  std::string s;
+  if (FILE* f = std::fopen(path.c_str(), "rb")) {
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) s.append(buf.data(), n);
+    std::fclose(f);
+  }
+  return s;
+}
+
 struct Result {
   int status;
   std::string err;
@@ -32,13 +43,7 @@ struct Result {
 Result run(const std::string& command) {
   const std::string err_path = "/tmp/tsrir_conf_test_" + std::to_string(getpid()) + ".err";
   const int rc = std::system((command + " >/dev/null 2>" + err_path).c_str());
-  std::string err;
-  if (FILE* f = std::fopen(err_path.c_str(), "r")) {
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) err.append(buf.data(), n);
-    std::fclose(f);
-  }
+  const std::string err = slurp(err_path);
   std::remove(err_path.c_str());
   return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, err};
 }
@@ -89,4 +94,30 @@ TEST(ConfFiles, AMisspelledOptionInAConfFileIsCaught) {
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find(path + ":2: unknown option '--definiton'"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("wrong number of arguments"), std::string::npos) << r.err;
+}
+
+TEST(ConfFiles, AliasesAndAConfigFileGiveTheSameRirsAsTheOptions) {
+  char tmpl[] = "/tmp/tsrir_conf_alias_XXXXXX";
+  const std::string dir = mkdtemp(tmpl);
+  if (FILE* f = std::fopen((dir + "/rooms.txt").c_str(), "w")) {
+    std::fputs("r1 room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2 t60=0.4\n", f);
+    std::fclose(f);
+  }
+  if (FILE* f = std::fopen((dir + "/sim.conf").c_str(), "w")) {
+    std::fputs("# as the options of run a\n--sample-rate=8000\n--seed=-5\n--length=0.25\n--format=float\n", f);
+    std::fclose(f);
+  }
+  const std::string sim = kBin + "/rir-simulate ";
+  const std::string rooms = " " + dir + "/rooms.txt ";
+  ASSERT_EQ(run(sim + "--sample-rate=8000 --seed=-5 --length=0.25 --format=float" + rooms + dir + "/a").status, 0);
+  ASSERT_EQ(run(sim + "--fs=8000 --random-seed=-5 --length=0.25 --format=float" + rooms + dir + "/b").status, 0);
+  ASSERT_EQ(run(sim + "--config=" + dir + "/sim.conf" + rooms + dir + "/c").status, 0);
+  ASSERT_EQ(run(sim + "--config=" + dir + "/sim.conf --seed=6" + rooms + dir + "/d").status, 0);
+  const std::string a = slurp(dir + "/a/r1.wav");
+  ASSERT_GT(a.size(), 2000u);
+  EXPECT_EQ(a, slurp(dir + "/b/r1.wav"));
+  EXPECT_EQ(a, slurp(dir + "/c/r1.wav"));
+  EXPECT_NE(a, slurp(dir + "/d/r1.wav"));  // the command line overrides the file's seed
+  EXPECT_EQ(slurp(dir + "/d/r1.wav").size(), a.size());
+  std::system(("rm -rf '" + dir + "'").c_str());
 }
