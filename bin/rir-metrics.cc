@@ -1,5 +1,6 @@
 // rir-metrics: acoustic parameters (T60, EDT, DRR, C50, per-band T20/T30/EDT) of RIR sets, and
 // the TS-RIR paper's Table 1 comparing sets against a reference set.
+#include "metrics/metric_columns.h"
 #include "metrics/metrics_program.h"
 #include "util/cli.h"
 
@@ -24,7 +25,12 @@ int main(int argc, char** argv) {
         "Usage: rir-metrics [options] <rir-scp-or-wav-file>...\n"
         "  e.g.: rir-metrics --bands data/rirs/rir.scp > metrics.txt\n"
         "        rir-metrics --format=json --num-threads=4 real.scp > metrics.json\n"
-        "        rir-metrics --definition=irstats --reference=real/rir.scp gas/rir.scp gas_eq/rir.scp\n");
+        "        rir-metrics --definition=irstats --reference=real/rir.scp gas/rir.scp gas_eq/rir.scp\n"
+        "\n"
+        "Parameters (columns of the table and JSON; Table 1 shows the paper's T60, DRR, EDT, C50):\n"
+        "iso:\n" +
+            tsrir::metric_columns_help(tsrir::MetricsDefinition::kIso) + "irstats:\n" +
+            tsrir::metric_columns_help(tsrir::MetricsDefinition::kIrstats));
     tsrir::RirMetricsCommand c;
     c.Register(&cli);
     c.inputs = cli.parse(argc, argv, 1, -1);
