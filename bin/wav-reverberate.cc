@@ -37,7 +37,7 @@ const char* kUsage =
     "output is the full convolution including the reverberant tail (Kaldi replaces the tail by the\n"
     "signal's first samples); 16-bit output is rounded to nearest (Kaldi truncates), a <= 1 LSB\n"
     "difference; --help prints to stdout.\n"
-    "Extensions (tsrir; Kaldi's binary rejects them): --additive-offsets, --loop-additive-signals,\n"
+    "Extensions (tsrir; Kaldi's binary rejects them): --additive-offsets, --loop-additive-signals, --additive-loops,\n"
     "--snr-reference, --max-in-memory-duration.\n"
     "Long inputs: beyond --max-in-memory-duration (default 300 s) the input is read in three passes\n"
     "(statistics; reverberation to a temporary file; scaling and encoding), so a 2-hour utterance\n"
@@ -79,6 +79,9 @@ int main(int argc, char** argv) {
     po.add("loop-additive-signals", &config.reverb.loop_additive_signals,
            "tsrir extension: tile each additive signal from its offset to the end of the reverberant signal; "
            "its power for the SNR is then measured over exactly the samples added");
+    po.add("additive-loops", &config.additive_loops,
+           "tsrir extension: comma-separated true/false, one per additive signal: loop that signal as "
+           "--loop-additive-signals does for all");
     po.add("max-in-memory-duration", &config.max_in_memory_s,
            "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
            "with memory independent of their length (same output; a piped input is first copied to a "

@@ -62,7 +62,7 @@ gan_opts=""           # extra ts-rirgan-train options (default: the original's t
 gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
                       # spin-wait: 2 threads measured ~10x slower than 1 under load)
 metrics_definition=irstats
-snrs=1:2
+snrs=1..2             # SNR range lo..hi dB (reverberate-data --background-snrs; Kaldi lists a:b:c work too)
 write_wavs=false      # far-field dirs: pipes in wav.scp (Kaldi's way) or 16-bit wavs
 rir_sets="gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"
 train_sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"   # stages 7-8
@@ -72,7 +72,7 @@ lm_url=www.openslr.org/resources/11
 help_message="Usage: $0 [options]   (see the top of $0 for the stages)
   --demo true|false, --demo-size small|tiny, --stage N, --stop-stage M, --nj N, --num-threads N,
   --data DIR, --exp DIR, --results FILE, --corpus-dir DIR, --librispeech-dir DIR, --but-dir DIR,
-  --gan-model DIR, --gan-steps N, --gan-width W, --seed N, --snrs lo:hi, ... (every variable above)
+  --gan-model DIR, --gan-steps N, --gan-width W, --seed N, --snrs lo..hi, ... (every variable above)
 e.g.: $0 --demo
       $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan"
 
@@ -436,7 +436,8 @@ if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
       [ "$write_wavs" = true ] && wavs=(--write-wavs "$data/wav/$name")
       run_logged "$exp/log/reverberate_$name.log" reverberate-data \
         --rir-set-parameters "1.0, $rir_list" --noise-set-parameters "$data/noise/noise_list" \
-        --snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
+        --background-snrs "$snrs" --noise-start random --max-noises-per-recording 1 --point-source-noise-rir none \
+        --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
       check_data_dir "$out"
       # Pipes regenerate the audio: wavs of an earlier --write-wavs run would be stale.
       [ "$write_wavs" = true ] || rm -rf "${data:?}/wav/$name"

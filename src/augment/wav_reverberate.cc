@@ -92,6 +92,15 @@ std::vector<OutputChannelSetup> setup_output_channels(
                   " channels but the impulse response has " + std::to_string(num_out) +
                   " (--multi-channel-output=true needs them equal)");
   }
+  std::vector<bool> loops;
+  for (const std::string& word : split_comma_list(config.additive_loops)) {
+    if (word != "true" && word != "false")
+      throw Error("--additive-loops: expected true or false, got '" + word + "'");
+    loops.push_back(word == "true");
+  }
+  if (!loops.empty() && loops.size() != additive_channels.size())
+    throw Error("--additive-loops has " + std::to_string(loops.size()) + " entries but --additive-signals has " +
+                std::to_string(additive_channels.size()));
   std::vector<OutputChannelSetup> setups(num_out);
   for (size_t c = 0; c < num_out; ++c) {
     if (have_rir) {
@@ -108,6 +117,7 @@ std::vector<OutputChannelSetup> setup_output_channels(
       additive[i].snr_db = snrs_db.at(i);
       additive[i].start_time_s = start_times_s.at(i);
       additive[i].offset_s = offsets_s.empty() ? 0.0 : offsets_s.at(i);
+      additive[i].loop = !loops.empty() && loops[i];
     }
   }
   return setups;

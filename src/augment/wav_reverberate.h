@@ -16,6 +16,7 @@ struct WavReverberateConfig {
   std::string snrs;                 // comma-separated dB
   std::string start_times;          // comma-separated s
   std::string additive_offsets;     // extension: comma-separated s (default 0 each)
+  std::string additive_loops;       // extension: comma-separated true/false per signal (default false)
   bool multi_channel_output = false;
   int input_wave_channel = 0;
   int rir_channel = 0;
