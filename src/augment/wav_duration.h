@@ -1,0 +1,34 @@
+// wav-to-duration: Kaldi's featbin/wav-to-duration contract (what utils/data/get_reco2dur.sh and
+// reverberate_data_dir.py call): durations of the recordings of a wav.scp written as a Kaldi float
+// archive, text ("ark,t:") or binary ("ark:").
+#pragma once
+#include <string>
+#include <vector>
+
+namespace tsrir {
+
+struct KaldiSpecifier {
+  std::string type;                 // "scp" | "ark"
+  std::vector<std::string> flags;   // e.g. "t", "p", "s", "cs"
+  std::string target;               // file, "-" or "... |" / "| ..."
+  bool has(const std::string& flag) const;
+};
+// "scp,p:wav.scp", "ark,t:-": throws Error naming the specifier when malformed.
+KaldiSpecifier parse_kaldi_specifier(const std::string& text, const std::string& what);
+
+struct RecordingDuration {
+  std::string key;
+  float duration_s = 0.0f;   // samples / rate, in single precision as Kaldi's BaseFloat
+};
+
+// Reads the scp (a wav.scp; "scp:" rspecifier only, as Kaldi's WaveHolder tables through scp).
+// Files: from the header (as Kaldi's WaveInfoHolder); pipes and "-": the whole stream is read.
+// With `read_entire_file` every recording is decoded completely. Errors name the scp line.
+std::vector<RecordingDuration> wav_durations(const std::string& rspecifier, bool read_entire_file);
+
+// Kaldi's BaseFloatWriter output: text "key 1.234 \n" (precision 7, Kaldi's InitKaldiOutputStream),
+// binary "key \0B\4<float32>". Written to the wspecifier's file (atomically), stdout or a pipe.
+std::string format_duration_archive(const std::vector<RecordingDuration>& durations, bool text);
+void write_duration_archive(const std::string& wspecifier, const std::vector<RecordingDuration>& durations);
+
+}  // namespace tsrir
