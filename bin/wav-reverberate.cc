@@ -38,6 +38,7 @@ const char* kUsage =
     "signal's first samples); 16-bit output is rounded to nearest (Kaldi truncates), a <= 1 LSB\n"
     "difference; --help prints to stdout.\n"
     "Extensions (tsrir; Kaldi's binary rejects them): --additive-offsets, --loop-additive-signals, --additive-loops,\n"
+    "--additive-impulse-responses, --additive-durations (Kaldi's nested noise commands in one process),\n"
     "--snr-reference, --max-in-memory-duration.\n"
     "Long inputs: beyond --max-in-memory-duration (default 300 s) the input is read in three passes\n"
     "(statistics; reverberation to a temporary file; scaling and encoding), so a 2-hour utterance\n"
@@ -82,6 +83,13 @@ int main(int argc, char** argv) {
     po.add("additive-loops", &config.additive_loops,
            "tsrir extension: comma-separated true/false, one per additive signal: loop that signal as "
            "--loop-additive-signals does for all");
+    po.add("additive-impulse-responses", &config.additive_impulse_responses,
+           "tsrir extension: comma-separated RIR rxfilenames, one field per additive signal (empty = none): "
+           "that signal is first reverberated as Kaldi's nested `wav-reverberate --impulse-response=<rir> "
+           "<signal> -` would, in this process");
+    po.add("additive-durations", &config.additive_durations,
+           "tsrir extension: comma-separated durations (s), one per additive signal (0 = as is): that signal "
+           "is first repeated or cut to it as Kaldi's nested `wav-reverberate --duration=<s>` would");
     po.add("max-in-memory-duration", &config.max_in_memory_s,
            "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
            "with memory independent of their length (same output; a piped input is first copied to a "

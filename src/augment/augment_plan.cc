@@ -125,10 +125,19 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   if (plan.rir >= 0)
     out += " " + shell_quote("--impulse-response=" + sources.rirs[static_cast<size_t>(plan.rir)].rxfilename);
   if (!plan.noises.empty()) {
-    std::vector<std::string> signals, starts, snrs, offsets, loops;
-    bool any_loop = false;
+    std::vector<std::string> signals, starts, snrs, offsets, loops, nested_rirs, nested_durations;
+    bool any_loop = false, any_nested = false;
     for (const PlannedNoise& noise : plan.noises) {
-      const std::string rx = noise_signal_rx(noise, sources, options.program);
+      // Our program does the nested step in its own process (one process per noise less).
+      const bool in_process = options.tsrir_extensions && noise.needs_nested_reverberation();
+      any_nested |= in_process;
+      nested_rirs.push_back(in_process && noise.rir >= 0 ? sources.rirs[static_cast<size_t>(noise.rir)].rxfilename : "");
+      nested_durations.push_back(in_process ? pipe_number(noise.extend_to_s) : "0");
+      if (nested_rirs.back().find(',') != std::string::npos)
+        throw Error(sources.rirs[static_cast<size_t>(noise.rir)].where + ": RIR rxfilename '" + nested_rirs.back() +
+                    "' contains a comma, which wav-reverberate's lists cannot hold; use --write-wavs");
+      const std::string rx = in_process ? sources.noises[static_cast<size_t>(noise.noise)].rxfilename
+                                        : noise_signal_rx(noise, sources, options.program);
       if (rx.find(',') != std::string::npos) {
         const NoiseChoice& choice = sources.noises[static_cast<size_t>(noise.noise)];
         throw Error(choice.where + ": noise '" + choice.id + "' gives the signal '" + rx +
@@ -144,6 +153,12 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
     out += " " + shell_quote("--additive-signals=" + joined(signals));
     out += " " + shell_quote("--start-times=" + joined(starts));
     out += " " + shell_quote("--snrs=" + joined(snrs));
+    if (any_nested) {
+      bool any_rir = false;
+      for (const std::string& r : nested_rirs) any_rir |= !r.empty();
+      if (any_rir) out += " " + shell_quote("--additive-impulse-responses=" + joined(nested_rirs));
+      out += " " + shell_quote("--additive-durations=" + joined(nested_durations));
+    }
     if (any_loop) {
       if (!options.tsrir_extensions)
         throw Error("--noise-start=random needs tsrir's wav-reverberate (--additive-offsets, --additive-loops); "

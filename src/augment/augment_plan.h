@@ -75,7 +75,10 @@ std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sou
 // "[<source pipe> |] <program> --shift-output=... [--impulse-response=<rir>]
 // [--additive-signals=<n1>,<n2> --start-times=<t1>,<t2> --snrs=<s1>,<s2>
 // [--additive-offsets=... --additive-loops=...]] <source file or -> - |", every argument
-// shell-quoted. Throws if a noise signal's rxfilename contains a comma (the list separator).
+// shell-quoted. A noise needing Kaldi's nested step (its own RIR, extension to the recording) is
+// that nested command for Kaldi's program, and for ours (tsrir_extensions) the plain noise with
+// --additive-impulse-responses / --additive-durations, the same computation in one process.
+// Throws if a noise signal's rxfilename contains a comma (the list separator).
 std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources, const PipeOptions& options);
 
 }  // namespace tsrir

@@ -1,8 +1,25 @@
 #include "augment/noise_signal.h"
 
-#include "io/audio_io.h"
+#include <algorithm>
+#include <cmath>
+
+#include "util/error.h"
 
 namespace tsrir {
+
+std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
+                                       double duration_s) {
+  ReverbOptions nested;  // wav-reverberate's defaults: shifted, normalised
+  nested.duration_s = duration_s;
+  std::vector<float> signal = reverberate_channel(noise, sample_rate_hz, rir, {}, nested);
+  // The pipe's 16-bit WAV: encode_wav()'s rounding and clipping, read back as s / 32768 (the
+  // equality with encode + decode is checked by InProcessNestedNoiseEqualsTheNestedPipe).
+  for (float& v : signal) {
+    if (!std::isfinite(v)) throw Error("nested noise signal: not a finite number");
+    v = std::clamp(std::nearbyint(v * 32768.0f), -32768.0f, 32767.0f) / 32768.0f;
+  }
+  return signal;
+}
 
 AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr<const std::vector<float>> noise,
                                     const PreparedRir* rir, double sample_rate_hz) {
@@ -15,14 +32,8 @@ AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr
     a.samples = std::move(noise);
     return a;
   }
-  ReverbOptions nested;  // wav-reverberate's defaults: shifted, normalised
-  nested.duration_s = planned.extend_to_s;
-  std::vector<float> signal = reverberate_channel(*noise, sample_rate_hz, rir, {}, nested);
-  // Through the same 16-bit WAV encoding and decoding as the pipe.
-  AudioInfo info;
-  std::vector<std::vector<float>> decoded =
-      decode_audio_bytes(encode_wav({signal}, sample_rate_hz), &info, "nested noise signal");
-  a.samples = std::make_shared<const std::vector<float>>(std::move(decoded.at(0)));
+  a.samples = std::make_shared<const std::vector<float>>(
+      nested_noise_signal(*noise, sample_rate_hz, rir, planned.extend_to_s));
   return a;
 }
 

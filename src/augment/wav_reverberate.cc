@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "augment/noise_signal.h"
 #include "augment/reverberate_stream.h"
 #include "augment/temp_file.h"
 #include "augment/wav_sink.h"
@@ -168,9 +169,39 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
   std::vector<std::vector<float>> rir;
   if (!config.impulse_response.empty())
     rir = read_channels_at_rate(config.impulse_response, fs, "--impulse-response");
+  // The nested-noise extensions: fields by position, an empty field (or none given) = plain signal.
+  const std::vector<std::string> nested_rirs = split(config.additive_impulse_responses, ',');
+  const std::vector<std::string> nested_durations = split(config.additive_durations, ',');
+  const bool any_nested = !config.additive_impulse_responses.empty() || !config.additive_durations.empty();
+  if (!config.additive_impulse_responses.empty() && nested_rirs.size() != additive_rx.size())
+    throw Error("--additive-impulse-responses has " + std::to_string(nested_rirs.size()) +
+                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
+  if (!config.additive_durations.empty() && nested_durations.size() != additive_rx.size())
+    throw Error("--additive-durations has " + std::to_string(nested_durations.size()) +
+                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
   std::vector<std::vector<std::vector<float>>> additive;
-  for (const std::string& rx : additive_rx)
-    additive.push_back(read_channels_at_rate(rx, fs, "--additive-signals"));
+  for (size_t i = 0; i < additive_rx.size(); ++i) {
+    const std::string rir_rx = any_nested && !config.additive_impulse_responses.empty() ? trim(nested_rirs[i]) : "";
+    const double duration = any_nested && !config.additive_durations.empty() && !trim(nested_durations[i]).empty()
+                                ? parse_double(trim(nested_durations[i]), "--additive-durations")
+                                : 0.0;
+    if (rir_rx.empty() && duration <= 0) {
+      additive.push_back(read_channels_at_rate(additive_rx[i], fs, "--additive-signals"));
+      continue;
+    }
+    // As the nested program: the noise at its own rate (its first channel), the RIR at that rate,
+    // 16-bit result, then resampled to the speech's rate as the outer program would.
+    AudioInfo info;
+    std::vector<std::vector<float>> noise = read_audio_channels(additive_rx[i], &info, "--additive-signals");
+    std::unique_ptr<PreparedRir> rir;
+    if (!rir_rx.empty())
+      rir = std::make_unique<PreparedRir>(
+          read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
+          info.sample_rate_hz);
+    std::vector<float> signal = nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration);
+    if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
+    additive.push_back({std::move(signal)});
+  }
   long long clipped = 0;
   size_t total = 0;
   if (!input.on_disk()) {

@@ -327,6 +327,14 @@ TEST(Plan, PipesInKaldisForm) {
   p.noises = {iso, fg};
   tsrir::PipeOptions o;
   o.program = "/opt/tsrir bin/wav-reverberate";
+  // Our program: the nested steps in its own process.
+  EXPECT_EQ(tsrir::format_pipe(p, sources, o),
+            "'/opt/tsrir bin/wav-reverberate' --shift-output=true "
+            "'--impulse-response=rirs/a 1;touch PWNED'\\''.wav' --additive-signals=isoA.wav,psf.wav "
+            "--start-times=0,3.25 --snrs=10,5 --additive-impulse-responses=,a2.wav --additive-durations=12.5,0 "
+            "'/data/it'\\''s $(touch X).wav' - |");
+  // Kaldi's program (or --pipe-dialect=kaldi): Kaldi's nested commands.
+  o.tsrir_extensions = false;
   EXPECT_EQ(tsrir::format_pipe(p, sources, o),
             "'/opt/tsrir bin/wav-reverberate' --shift-output=true "
             "'--impulse-response=rirs/a 1;touch PWNED'\\''.wav' "
@@ -341,6 +349,7 @@ TEST(Plan, PipesInKaldisForm) {
   EXPECT_EQ(tsrir::noise_signal_rx(fg, sources, o.program),
             "sox psf.flac -t wav - | wav-reverberate --impulse-response=a2.wav - - |");
   // Looped noises (--noise-start=random) need our program's extension options.
+  o.tsrir_extensions = true;
   p.noises = {iso};
   p.noises[0].extend_to_s = 0;
   p.noises[0].loop = true;
