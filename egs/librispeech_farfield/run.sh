@@ -74,7 +74,16 @@ help_message="Usage: $0 [options]   (see the top of $0 for the stages)
   --data DIR, --exp DIR, --results FILE, --corpus-dir DIR, --librispeech-dir DIR, --but-dir DIR,
   --gan-model DIR, --gan-steps N, --gan-width W, --seed N, --snrs lo..hi, ... (every variable above)
 e.g.: $0 --demo
-      $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan"
+      $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan
+Environment:
+  KALDI_ROOT  a compiled Kaldi checkout: enables stage 8 (chain TDNN training and decoding), Kaldi's
+              run.pl/queue.pl/slurm.pl and validate_data_dir.sh; unset = stages 0-7 only
+  TSRIR_CMD   how parallel jobs run (cmd.sh): run.pl (default with Kaldi), queue.pl (SGE; reads
+              conf/queue.conf), slurm.pl (reads conf/slurm.conf); without Kaldi local/run_jobs.sh.
+              A program run with --num-threads N asks the queue for N slots (--num-threads N to \$cmd);
+              conf/queue.conf and conf/slurm.conf are copied into every directory jobs start from
+  TSRIR_BIN   tsrir's bin/ (default ../../build/bin); compute nodes need the same absolute path
+See docs/recipe.md for cluster set-up, GPU, disk and time per stage."
 
 # `--demo` alone (the README's form) means --demo true; --demo also changes defaults, which
 # options given on the command line still override.
@@ -142,7 +151,15 @@ run_logged() {  # [JOB=1:N] <log> <command...>: through $run_cmd (default $train
   local spec=() l                                   # argument order; on failure shows the log's tail
   if [[ "$1" =~ ^[A-Za-z_][A-Za-z0-9_]*=[0-9]+(:[0-9]+)?$ ]]; then spec=("$1"); shift; fi
   l=$1; shift
-  if ! ${run_cmd:-$train_cmd} ${spec[@]+"${spec[@]}"} "$l" "$@"; then
+  # A program that runs threads asks the queue for that many slots, as Kaldi's scripts do
+  # (queue.pl/slurm.pl: --num-threads N; run.pl records it).
+  local threads=() a prev=""
+  for a in "$@"; do
+    case $a in --num-threads=*) threads=(--num-threads "${a#--num-threads=}") ;; esac
+    [ "$prev" = --num-threads ] && threads=(--num-threads "$a")
+    prev=$a
+  done
+  if ! ${run_cmd:-$train_cmd} ${threads[@]+"${threads[@]}"} ${spec[@]+"${spec[@]}"} "$l" "$@"; then
     # The log of the first failed job (run.pl's footer records each job's exit code).
     local shown; shown=$(grep -l '^# Ended (code [1-9]' ${l//JOB/*} 2>/dev/null | head -n 1 || true)
     tail -n 20 "${shown:-${l//JOB/1}}" >&2 || true

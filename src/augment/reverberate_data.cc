@@ -16,6 +16,7 @@
 #include "augment/noise_signal.h"
 #include "augment/reverberate_stream.h"
 #include "augment/sampling.h"
+#include "augment/wav_duration.h"
 #include "augment/wav_reverberate.h"
 #include "io/atomic_output.h"
 #include "io/audio_io.h"
@@ -66,19 +67,12 @@ class LoadOnceCache {
   std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
 };
 
+// A pipe's WAV header is enough when it states the size (flac -d, sox): the command is stopped
+// after it, as Kaldi's get_reco2dur.sh does; otherwise it is read to the end.
 double audio_duration_s(const std::string& rx, const std::string& where) {
-  try {
-    if (is_pipe_rxfilename(rx) || trim(rx) == "-") {
-      AudioInfo info;
-      std::vector<std::vector<float>> channels = read_audio_channels(rx, &info, where);
-      return static_cast<double>(channels.at(0).size()) / info.sample_rate_hz;
-    }
-    AudioInfo info = probe_audio(trim(rx));
-    if (info.frames <= 0) throw Error("zero-length audio");
-    return static_cast<double>(info.frames) / info.sample_rate_hz;
-  } catch (const Error& e) {
-    throw Error(where + ": " + e.what());
-  }
+  const double seconds = rx_duration_s(rx, false, where);
+  if (!(seconds > 0)) throw Error(where + ": zero-length audio");
+  return seconds;
 }
 
 // Kaldi's ids for the tables keyed by recording or utterance; `rename_first_value` also renames

@@ -44,6 +44,69 @@ KaldiSpecifier parse_kaldi_specifier(const std::string& text, const std::string&
   return s;
 }
 
+namespace {
+
+uint32_t le32(const std::vector<char>& b, size_t at) {
+  return static_cast<uint32_t>(static_cast<unsigned char>(b[at])) |
+         static_cast<uint32_t>(static_cast<unsigned char>(b[at + 1])) << 8 |
+         static_cast<uint32_t>(static_cast<unsigned char>(b[at + 2])) << 16 |
+         static_cast<uint32_t>(static_cast<unsigned char>(b[at + 3])) << 24;
+}
+
+}  // namespace
+
+std::optional<double> wav_header_duration_s(const std::vector<char>& bytes) {
+  if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) != 0 || std::memcmp(bytes.data() + 8, "WAVE", 4) != 0)
+    return std::nullopt;
+  uint32_t rate = 0, block_align = 0;
+  for (size_t at = 12; at + 8 <= bytes.size();) {
+    const uint32_t size = le32(bytes, at + 4);
+    if (std::memcmp(bytes.data() + at, "fmt ", 4) == 0 && at + 8 + 16 <= bytes.size()) {
+      rate = le32(bytes, at + 12);
+      block_align = static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 20])) |
+                    static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 21])) << 8;
+    } else if (std::memcmp(bytes.data() + at, "data", 4) == 0) {
+      if (rate == 0 || block_align == 0 || size == 0 || size >= 0xFFFFFFF0u) return std::nullopt;
+      return static_cast<double>(size / block_align) / rate;
+    }
+    at += 8 + size + (size & 1);
+  }
+  return std::nullopt;
+}
+
+double rx_duration_s(const std::string& rx_in, bool read_entire_file, const std::string& where) {
+  const std::string rx = trim(rx_in);
+  try {
+    if (!read_entire_file && is_pipe_rxfilename(rx)) {
+      std::string command = rx.substr(0, rx.size() - 1);
+      FILE* pipe = popen(command.c_str(), "r");
+      if (!pipe) throw Error("cannot start the command");
+      std::vector<char> head(65536);
+      size_t got = 0;
+      while (got < head.size()) {
+        const size_t n = std::fread(head.data() + got, 1, head.size() - got, pipe);
+        if (n == 0) break;
+        got += n;
+      }
+      pclose(pipe);  // the command may die of SIGPIPE now, as under Kaldi's header-only reader
+      head.resize(got);
+      if (const std::optional<double> d = wav_header_duration_s(head)) return *d;
+    }
+    if (read_entire_file || rx == "-" || is_pipe_rxfilename(rx)) {
+      AudioInfo info;
+      std::vector<std::vector<float>> channels = read_audio_channels(rx, &info, where);
+      if (!(info.sample_rate_hz > 0)) throw Error("no sample rate");
+      return static_cast<double>(channels.at(0).size()) / info.sample_rate_hz;
+    }
+    const AudioInfo info = probe_audio(rx);
+    if (!(info.sample_rate_hz > 0)) throw Error("no sample rate");
+    return static_cast<double>(info.frames) / info.sample_rate_hz;
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    throw Error(message.find(where) == std::string::npos ? where + ": " + message : message);
+  }
+}
+
 std::vector<RecordingDuration> wav_durations(const std::string& rspecifier, bool read_entire_file) {
   const KaldiSpecifier spec = parse_kaldi_specifier(rspecifier, "wav rspecifier");
   if (spec.type != "scp")
@@ -54,27 +117,10 @@ std::vector<RecordingDuration> wav_durations(const std::string& rspecifier, bool
   std::vector<RecordingDuration> out;
   for (const TableEntry& e : table.entries) {
     const std::string where = spec.target + ":" + std::to_string(e.line) + ": recording '" + e.key + "'";
-    const std::string rx = trim(e.value);
-    double frames = 0, rate = 0;
-    try {
-      if (read_entire_file || rx == "-" || is_pipe_rxfilename(rx)) {
-        AudioInfo info;
-        std::vector<std::vector<float>> channels = read_audio_channels(rx, &info, where);
-        frames = static_cast<double>(channels.at(0).size());
-        rate = info.sample_rate_hz;
-      } else {
-        const AudioInfo info = probe_audio(rx);
-        frames = static_cast<double>(info.frames);
-        rate = info.sample_rate_hz;
-      }
-    } catch (const Error& error) {
-      const std::string message = error.what();
-      throw Error(message.find(where) == std::string::npos ? where + ": " + message : message);
-    }
-    if (!(rate > 0)) throw Error(where + ": no sample rate");
+    const double seconds = rx_duration_s(e.value, read_entire_file, where);
     RecordingDuration d;
     d.key = e.key;
-    d.duration_s = static_cast<float>(frames) / static_cast<float>(rate);
+    d.duration_s = static_cast<float>(seconds);
     out.push_back(d);
   }
   return out;

@@ -2,6 +2,7 @@
 // reverberate_data_dir.py call): durations of the recordings of a wav.scp written as a Kaldi float
 // archive, text ("ark,t:") or binary ("ark:").
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,16 @@ struct RecordingDuration {
   std::string key;
   float duration_s = 0.0f;   // samples / rate, in single precision as Kaldi's BaseFloat
 };
+
+// Duration from the start of a WAV stream when its header states the data size (as Kaldi's
+// WaveInfoHolder does); nullopt for a streamed header (size 0 or 0xFFFFFFFF), another format, or
+// too few bytes. `bytes` = the first bytes of the stream (the header fits in 64 KB).
+std::optional<double> wav_header_duration_s(const std::vector<char>& bytes);
+
+// The duration of an rxfilename: a file from its header (libsndfile: any format); a pipe or "-"
+// from its WAV header when that states the size (the command is then stopped, as Kaldi does),
+// else by reading it to the end. `read_entire_file`: always decode to the end.
+double rx_duration_s(const std::string& rx, bool read_entire_file, const std::string& where);
 
 // Reads the scp (a wav.scp; "scp:" rspecifier only, as Kaldi's WaveHolder tables through scp).
 // Files: from the header (as Kaldi's WaveInfoHolder); pipes and "-": the whole stream is read.

@@ -76,4 +76,33 @@ TEST_F(WavToDuration, ExitCodesAndErrors) {
   EXPECT_TRUE(tsrir::parse_kaldi_specifier("ark,t:-", "x").has("t"));
 }
 
+// Pipes: the WAV header's data size when it states one (Kaldi's header-only reading), else the
+// stream to its end (a streamed header from sox to a pipe).
+TEST_F(WavToDuration, PipeHeadersAndStreamedWavs) {
+  std::vector<char> header(44, 0);
+  auto put32 = [&](size_t at, uint32_t v) { for (int i = 0; i < 4; ++i) header[at + i] = static_cast<char>(v >> (8 * i)); };
+  std::memcpy(header.data(), "RIFF", 4);
+  std::memcpy(header.data() + 8, "WAVEfmt ", 8);
+  put32(16, 16);
+  header[20] = 1;  // PCM
+  header[22] = 2;  // channels
+  put32(24, 8000);
+  put32(28, 32000);
+  header[32] = 4;  // block align
+  header[34] = 16;
+  std::memcpy(header.data() + 36, "data", 4);
+  put32(40, 4 * 12000);  // 12000 frames at 8 kHz
+  ASSERT_TRUE(tsrir::wav_header_duration_s(header).has_value());
+  EXPECT_DOUBLE_EQ(*tsrir::wav_header_duration_s(header), 1.5);
+  put32(40, 0xFFFFFFFFu);
+  EXPECT_FALSE(tsrir::wav_header_duration_s(header).has_value());
+  EXPECT_FALSE(tsrir::wav_header_duration_s(std::vector<char>(header.begin(), header.begin() + 20)).has_value());
+  // A pipe whose header is streamed (written through a fifo-like cat of a truncated-size header):
+  // read to the end gives the true length.
+  std::ofstream(dir + "/streamed.scp") << "s sox " << dir << "/a.wav -t wav - |\n"
+                                       << "h cat " << dir << "/a.wav |\n";
+  ASSERT_EQ(run(kBin + " scp:" + dir + "/streamed.scp ark,t:" + dir + "/d 2>/dev/null"), 0);
+  EXPECT_EQ(slurp(dir + "/d"), "s 1.234 \nh 1.234 \n");
+}
+
 }  // namespace
