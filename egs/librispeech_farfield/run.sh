@@ -441,12 +441,17 @@ fi
 # ---------------------------------------------------------------------------------------------
 if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
   begin_stage 7 "far-field data dirs (reverberate-data, SNR $snrs dB, noise at a random offset, looped)"
-  need_program reverberate-data wav-reverberate
+  need_program reverberate-data wav-reverberate wav-to-duration
   require "$data/noise/noise_list"
   made=()
   farfield() {  # <in-dir> <rir-list> <out-dir>
     local in=$1 rir_list=$2 out=$3 sig wavs=()
     require "$in/wav.scp" "$rir_list"
+    # Durations once per clean dir (the recipe's own stage-1 output), as Kaldi's get_reco2dur.sh
+    # does: every far-field set made from it then reads them instead of opening each recording.
+    if [ ! -s "$in/reco2dur" ] || [ "$(count "$in/reco2dur")" -ne "$(count "$in/wav.scp")" ]; then
+      run_logged "$exp/log/reco2dur_$(basename "$in").log" wav-to-duration "scp:$in/wav.scp" "ark,t:$in/reco2dur"
+    fi
     sig="snrs=$snrs seed=$seed wavs=$write_wavs $(cat "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" 2>/dev/null | md5sum)"
     local name; name=$(basename "$out")
     if ! is_done "$exp/farfield/$name.done" "$sig"; then
