@@ -48,12 +48,10 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool usage_error = false;
-  const int status = tsrir::run_program("wav-reverberate", [&]() {
-    tsrir::KaldiOptionParser po(kUsage);
-    tsrir::WavReverberateConfig config;
-    float volume = 0.0f, duration = 0.0f;
-    std::string snr_reference = "early";
+  tsrir::WavReverberateConfig config;
+  float volume = 0.0f, duration = 0.0f;
+  std::string snr_reference = "early";
+  auto define = [&](tsrir::KaldiOptionParser& po) {
     po.add("multi-channel-output", &config.multi_channel_output,
            "One output channel per RIR channel (additive signals must have as many channels)");
     po.add("input-wave-channel", &config.input_wave_channel, "Channel of the input used to make the output");
@@ -97,22 +95,13 @@ int main(int argc, char** argv) {
     po.add("snr-reference", &snr_reference,
            "tsrir extension: early = Kaldi's early-reverberation energy, full = the whole reverberant "
            "speech x*h (mean over its N+M-1 samples)");
-    if (po.parse(argc, argv) == tsrir::KaldiOptionParser::Outcome::kHelp) {
-      std::cout << po.usage_text();
-      return 0;
-    }
-    if (po.positionals().size() != 2) {
-      std::cerr << po.usage_text();
-      usage_error = true;
-      return 1;
-    }
-    config.reverb.volume = volume;
-    config.reverb.duration_s = duration;
-    config.reverb.snr_reference = tsrir::parse_snr_reference(snr_reference);
-    tsrir::run_wav_reverberate(config, po.positionals()[0], po.positionals()[1]);
-    return 0;
-  });
-  // Kaldi binaries return -1 (255) on errors and exit(1) on a usage error.
-  if (status != 0 && !usage_error) return 255;
-  return status;
+  };
+  return tsrir::run_kaldi_program("wav-reverberate", kUsage, argc, argv, 2, define,
+                                  [&](const std::vector<std::string>& args) {
+                                    config.reverb.volume = volume;
+                                    config.reverb.duration_s = duration;
+                                    config.reverb.snr_reference = tsrir::parse_snr_reference(snr_reference);
+                                    tsrir::run_wav_reverberate(config, args[0], args[1]);
+                                    return 0;
+                                  });
 }

@@ -29,41 +29,26 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool usage_error = false;
-  bool finished = false;  // the body ran to its end (an error leaves it false)
-  int done = 0;
-  const int status = tsrir::run_program("wav-to-duration", [&]() {
-    tsrir::KaldiOptionParser po(kUsage);
-    bool read_entire_file = false;
+  bool read_entire_file = false;
+  auto define = [&](tsrir::KaldiOptionParser& po) {
     po.add("read-entire-file", &read_entire_file,
            "If true, decode every recording completely instead of reading file headers");
-    if (po.parse(argc, argv) == tsrir::KaldiOptionParser::Outcome::kHelp) {
-      std::cout << po.usage_text();
-      return 0;
-    }
-    if (po.positionals().size() != 2) {
-      std::cerr << po.usage_text();
-      usage_error = true;
-      return 1;
-    }
-    const std::vector<tsrir::RecordingDuration> durations =
-        tsrir::wav_durations(po.positionals()[0], read_entire_file);
-    tsrir::write_duration_archive(po.positionals()[1], durations);
+  };
+  return tsrir::run_kaldi_program("wav-to-duration", kUsage, argc, argv, 2, define,
+                                  [&](const std::vector<std::string>& args) {
+    const std::vector<tsrir::RecordingDuration> durations = tsrir::wav_durations(args[0], read_entire_file);
+    tsrir::write_duration_archive(args[1], durations);
     double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (const auto& d : durations) {
       sum += d.duration_s;
       lo = std::min<double>(lo, d.duration_s);
       hi = std::max<double>(hi, d.duration_s);
     }
-    done = static_cast<int>(durations.size());
+    const size_t done = durations.size();
     tsrir::log_info("Printed duration for " + std::to_string(done) + " audio files.");
     if (done > 0)
       tsrir::log_info("Mean duration was " + std::to_string(sum / done) + ", min and max durations were " +
                       std::to_string(lo) + ", " + std::to_string(hi));
-    finished = true;
-    return done != 0 ? 0 : 1;
+    return done != 0 ? 0 : 1;  // Kaldi: 1 when nothing was written
   });
-  // Kaldi: -1 (255) on an error, 1 for wrong arguments or nothing written.
-  if (status != 0 && !usage_error && !finished) return 255;
-  return status;
 }
