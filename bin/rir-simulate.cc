@@ -20,23 +20,14 @@ int main(int argc, char** argv) {
         "Usage: rir-simulate [options] <room-list> <out-dir>\n"
         "Example:\n"
         "  echo 'r1 room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2 t60=0.6' > rooms.txt\n"
-        "  rir-simulate --fs=16000 --length=auto --num-threads=4 rooms.txt data/sim_rirs\n\n" +
+        "  rir-simulate --sample-rate=16000 --length=auto --num-threads=4 rooms.txt data/sim_rirs\n\n" +
         sim::room_list_keys_help() +
         "\nModel components (--model=a+b+..., parameters as name:key=value,key=value):\n" +
         sim::model_components_help();
     CommandLine cli("rir-simulate", usage);
     sim::SimulateOptions options;
-    std::string format = "int16";
-    int seed = 0;
-    cli.option("fs", &options.sample_rate_hz, "sample rate, Hz");
-    cli.option("length", &options.length, "RIR length in seconds, or 'auto' (direct delay + longest band T60)");
-    cli.option("model", &options.model, "model components, e.g. gas (= ism+diffuse)");
-    cli.option("seed", &seed, "random seed of the stochastic parts");
-    cli.option("num-threads", &options.num_threads, "threads (RIRs are rendered in parallel)");
-    cli.option("format", &format, "output sample format: int16 | float");
+    options.Register(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 2, 2);
-    options.format = parse_sample_format(format);
-    options.seed = static_cast<uint64_t>(static_cast<int64_t>(seed));
     const std::vector<sim::RoomSpec> rooms = sim::read_room_list(args[0]);
     log_info("simulating " + std::to_string(rooms.size()) + " RIRs with model '" + options.model + "'");
     sim::simulate_room_list(rooms, args[1], options);

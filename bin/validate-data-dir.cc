@@ -1,11 +1,6 @@
 // validate-data-dir: the checks of Kaldi's utils/validate_data_dir.sh --no-feats, without Kaldi.
-#include <filesystem>
-#include <iostream>
-#include <string>
-
-#include "io/data_dir.h"
+#include "io/validate_data_dir_program.h"
 #include "util/cli.h"
-#include "util/error.h"
 
 int main(int argc, char** argv) {
   return tsrir::run_program("validate-data-dir", [&]() {
@@ -21,22 +16,9 @@ int main(int argc, char** argv) {
         "Usage: validate-data-dir [--no-text] [--no-feats] <data-dir>\n"
         "Example:\n"
         "  validate-data-dir --no-feats data/test_clean_rvb_real\n");
-    bool no_text = false, no_feats = false;
-    cli.flag("no-text", &no_text, "text may be absent (it is still checked when present)");
-    cli.flag("no-feats", &no_feats, "accepted for Kaldi's command line; features are never checked");
+    tsrir::ValidateDataDirOptions options;
+    options.Register(&cli);
     const auto args = cli.parse(argc, argv, 1, 1);
-    const std::string& dir = args[0];
-    if (!std::filesystem::is_directory(dir)) throw tsrir::Error(dir + ": no such directory");
-    if (!no_feats && std::filesystem::exists(std::filesystem::path(dir) / "feats.scp")) {
-      tsrir::log_warning(dir + "/feats.scp exists but is not checked (use Kaldi's validate_data_dir.sh for features)");
-    }
-    const auto problems = tsrir::validate_data_dir(dir, !no_text);
-    for (const auto& p : problems) std::cerr << "validate-data-dir: " << p << "\n";
-    if (!problems.empty()) {
-      std::cerr << "validate-data-dir: " << dir << ": " << problems.size() << " problem(s)\n";
-      return 1;
-    }
-    tsrir::log_info(dir + ": valid");
-    return 0;
+    return tsrir::run_validate_data_dir(options, args[0]);
   });
 }

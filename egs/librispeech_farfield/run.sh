@@ -131,6 +131,7 @@ but_dir=$(readlink -m "${but_dir:-$corpus_dir/BUT_ReverbDB}")
 shared_data=$(readlink -m "$shared_data")
 if [ "$demo" = true ]; then train_set=train_clean; else train_set=train_clean_460; fi
 rirs=$data/rirs
+conf=$(readlink -f ../../conf)   # the programs' settings as in the paper (conf/<program>.conf)
 
 # ---- helpers ----
 t_stage=$SECONDS
@@ -282,7 +283,7 @@ if [ $stage -le 2 ] && [ $stop_stage -ge 2 ]; then
   begin_stage 2 "GAS: one synthetic RIR per real RIR (rir-simulate --model=$sim_model, random absorption $absorption_range per $absorption_draw)"
   need_program rir-room-list rir-simulate
   require "$rirs/real_all/meta.txt" "$rirs/split/train.ids"
-  sig="model=$sim_model absorption=$absorption_range/$absorption_draw seed=$seed $(md5sum <"$rirs/real_all/meta.txt")"
+  sig="model=$sim_model absorption=$absorption_range/$absorption_draw seed=$seed $(md5sum <"$rirs/real_all/meta.txt") $(md5sum <"$conf/rir-simulate.conf")"
   out=$rirs/gas_all
   if is_done "$out/.done" "$sig"; then
     log "stage 2: GAS RIRs already simulated"
@@ -301,7 +302,7 @@ if [ $stage -le 2 ] && [ $stop_stage -ge 2 ]; then
     for ((j = 1; j <= jobs; j++)); do
       grep -v '^#' "$out/room_list" | awk -v j="$j" -v n="$jobs" '(NR - 1) % n == j - 1' >"$out/split$nj/room_list.$j"
     done
-    run_logged JOB=1:$jobs "$out/log/simulate.JOB.log" rir-simulate --model="$sim_model" --seed="$seed" --fs=16000 \
+    run_logged JOB=1:$jobs "$out/log/simulate.JOB.log" rir-simulate --config="$conf/rir-simulate.conf" --model="$sim_model" --seed="$seed" \
       --num-threads=1 "$out/split$nj/room_list.JOB" "$out/split$nj/JOB"
     cat "$out"/split$nj/*/rir.scp | sort >"$out/rir.scp"
     cat "$out"/split$nj/*/rir_list | sort -k2,2 >"$out/rir_list"
@@ -320,12 +321,12 @@ if [ $stage -le 3 ] && [ $stop_stage -ge 3 ]; then
   begin_stage 3 "sub-band EQ fitted on the $(count "$rirs/real_train/rir.scp") real training RIRs (rir-eq fit $eq_opts)"
   need_program rir-eq
   require "$rirs/real_train/rir_list"
-  sig="$eq_opts $(cat "$rirs/real_train/.done" 2>/dev/null)"
+  sig="$eq_opts $(cat "$rirs/real_train/.done" 2>/dev/null) $(md5sum <"$conf/rir-eq.conf")"
   if is_done "$exp/eq/.done" "$sig"; then
     log "stage 3: EQ model already fitted"
   else
     # shellcheck disable=SC2086
-    run_logged "$exp/eq/log/fit.log" rir-eq fit $eq_opts --sample-rate=16000 --num-threads="$num_threads" \
+    run_logged "$exp/eq/log/fit.log" rir-eq fit --config="$conf/rir-eq.conf" $eq_opts --num-threads="$num_threads" \
       "$rirs/real_train/rir_list" "$exp/eq/eq.model"
     mark_done "$exp/eq/.done" "$sig"
   fi
@@ -378,11 +379,11 @@ if [ $stage -le 5 ] && [ $stop_stage -ge 5 ]; then
       in=$rirs/${input}_$split; out=$rirs/${set}_$split
       require "$in/rir_list"
       # The input set's identity (its .done, which chains back to the real RIRs) and the model's.
-      if [ "$op" = eq ]; then model_sig=$(cat "$exp/eq/.done" 2>/dev/null); else model_sig=$gan_sig; fi
+      if [ "$op" = eq ]; then model_sig="$(cat "$exp/eq/.done" 2>/dev/null) $(md5sum <"$conf/rir-eq-apply.conf")"; else model_sig=$gan_sig; fi
       sig="$op seed=$seed $(cat "$in/.done" 2>/dev/null | md5sum) $model_sig"
       if is_done "$out/.done" "$sig"; then continue; fi
       if [ "$op" = eq ]; then
-        run_logged "$exp/log/make_${set}_$split.log" rir-eq apply --seed="$seed" --num-threads="$num_threads" \
+        run_logged "$exp/log/make_${set}_$split.log" rir-eq apply --config="$conf/rir-eq-apply.conf" --seed="$seed" --num-threads="$num_threads" \
           "$exp/eq/eq.model" "$in/rir_list" "$out"
       else
         # 16-bit output: Kaldi's own wav-reverberate reads 16-bit PCM only.
@@ -411,7 +412,7 @@ if [ $stage -le 6 ] && [ $stop_stage -ge 6 ]; then
     l=$(set_label "$s"); cp "$rirs/${s}_test/rir.scp" "$t1/sets/$l"; labels+=("$l")
   done
   # Run from the sets directory so that the table's row names are the paper's set names.
-  (cd "$t1/sets" && rir-metrics --definition="$metrics_definition" --num-threads="$num_threads" \
+  (cd "$t1/sets" && rir-metrics --config="$conf/rir-metrics.conf" --definition="$metrics_definition" --num-threads="$num_threads" \
       --reference=real "${labels[@]}") >"$t1/table1.txt" 2>"$t1/rir-metrics.log" ||
     { cat "$t1/rir-metrics.log" >&2; die "rir-metrics failed (log: $t1/rir-metrics.log)"; }
   {
@@ -452,14 +453,13 @@ if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
     if [ ! -s "$in/reco2dur" ] || [ "$(count "$in/reco2dur")" -ne "$(count "$in/wav.scp")" ]; then
       run_logged "$exp/log/reco2dur_$(basename "$in").log" wav-to-duration "scp:$in/wav.scp" "ark,t:$in/reco2dur"
     fi
-    sig="snrs=$snrs seed=$seed wavs=$write_wavs $(cat "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" 2>/dev/null | md5sum)"
+    sig="snrs=$snrs seed=$seed wavs=$write_wavs $(cat "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" "$conf/reverberate.conf" 2>/dev/null | md5sum)"
     local name; name=$(basename "$out")
     if ! is_done "$exp/farfield/$name.done" "$sig"; then
       [ "$write_wavs" = true ] && wavs=(--write-wavs "$data/wav/$name")
-      run_logged "$exp/log/reverberate_$name.log" reverberate-data \
+      run_logged "$exp/log/reverberate_$name.log" reverberate-data --config="$conf/reverberate.conf" \
         --rir-set-parameters "1.0, $rir_list" --noise-set-parameters "$data/noise/noise_list" \
-        --background-snrs "$snrs" --noise-start random --max-noises-per-recording 1 --point-source-noise-rir none \
-        --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
+        --background-snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
       check_data_dir "$out"
       # Pipes regenerate the audio: wavs of an earlier --write-wavs run would be stale.
       [ "$write_wavs" = true ] || rm -rf "${data:?}/wav/$name"

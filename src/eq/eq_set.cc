@@ -4,13 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <memory>
 #include <mutex>
 #include <sstream>
 
 #include "io/atomic_output.h"
 #include "io/rir_set.h"
-#include "util/cli.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/parallel.h"
 #include "util/rng.h"
 #include "util/strings.h"

@@ -4,11 +4,27 @@
 #include <exception>
 
 #include "io/atomic_output.h"
-#include "util/cli.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/parallel.h"
 
 namespace tsrir {
+
+void MetricsRunOptions::Register(OptionsItf* opts) {
+  metrics.Register(opts);
+  opts->Register("channel", &channel, "channel to measure (0-based; -1 = mean of all channels)");
+  opts->Register("num-threads", &num_threads, "threads (RIRs are measured in parallel)");
+  opts->Register("skip-errors", &skip_errors, "report unreadable or unmeasurable RIRs and go on");
+}
+
+void RirMetricsCommand::Register(OptionsItf* opts) {
+  opts->RegisterEnum("format", &format, {{"table", MetricsFormat::kTable}, {"json", MetricsFormat::kJson}},
+                     "output format");
+  opts->Register("bands", &bands, "table format: add T20, T30 and EDT columns per octave band");
+  run.Register(opts);
+  opts->Register("reference", &reference, "reference set: print Table 1 (means, |mean - reference|) of the inputs");
+  opts->Register("output", &output, "output file ('-' = stdout), written atomically");
+}
 
 void measure_rir_refs(const std::vector<RirRef>& refs, const MetricsRunOptions& options,
                       const std::function<void(const MetricsOutcome&)>& on_result) {

@@ -17,6 +17,8 @@ struct MetricsRunOptions {
   int num_threads = 1;
   bool skip_errors = false;   // report failing RIRs and go on; default: stop at the first
   size_t chunk_size = 0;      // RIRs in flight at once; 0 = 32 per thread
+
+  void Register(OptionsItf* opts);  // metrics' options, --channel, --num-threads, --skip-errors
 };
 
 struct MetricsOutcome {
@@ -37,7 +39,9 @@ struct RirMetricsCommand {
   bool bands = false;
   std::string reference;      // non-empty: Table-1 mode against this set
   std::string output = "-";
-  std::vector<std::string> inputs;
+  std::vector<std::string> inputs;  // positional: not registered
+
+  void Register(OptionsItf* opts);
 };
 
 // Returns the exit status (0: success; 1: some RIRs were skipped and none succeeded).

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "metrics/metric_columns.h"
 #include "util/error.h"
 #include "util/json.h"
 #include "util/strings.h"
@@ -31,7 +32,8 @@ void MetricsReport::add(const RirMetrics& m) {
   summary_.add(m);
   if (format_ == MetricsFormat::kTable) {
     if (!header_written_) {
-      out_ << "# id T60 EDT DRR C50";
+      out_ << "# id";
+      for (const MetricColumn& c : metric_columns()) out_ << ' ' << c.name;
       if (with_bands_) {
         for (const BandMetrics& b : m.bands) {
           columns_.push_back(b.center_hz);
@@ -42,8 +44,8 @@ void MetricsReport::add(const RirMetrics& m) {
       out_ << "\n";
       header_written_ = true;
     }
-    out_ << m.id << ' ' << format_double(m.t60_s) << ' ' << format_double(m.edt_s) << ' '
-         << format_double(m.drr_db) << ' ' << format_double(m.c50_db);
+    out_ << m.id;
+    for (const MetricColumn& c : metric_columns()) out_ << ' ' << format_double(m.*c.value, c.table_digits);
     for (double fc : columns_) {
       const BandMetrics* b = m.band(fc);
       out_ << ' ' << format_double(b ? b->t20_s : kMetricsNaN) << ' ' << format_double(b ? b->t30_s : kMetricsNaN)
@@ -54,7 +56,8 @@ void MetricsReport::add(const RirMetrics& m) {
   }
   JsonWriter& j = *json_;
   j.begin_object();
-  j.field("id", m.id).field("T60", m.t60_s).field("EDT", m.edt_s).field("DRR", m.drr_db).field("C50", m.c50_db);
+  j.field("id", m.id);
+  for (const MetricColumn& c : metric_columns()) j.field(c.json_key, m.*c.value);
   j.key("bands").begin_object();
   for (const BandMetrics& b : m.bands) {
     j.key(band_label(b.center_hz)).begin_object();

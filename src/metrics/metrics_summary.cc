@@ -5,14 +5,13 @@
 #include <iomanip>
 #include <sstream>
 
+#include "metrics/metric_columns.h"
 #include "util/json.h"
 #include "util/strings.h"
 
 namespace tsrir {
 
 namespace {
-constexpr SetParameter kAll[kNumSetParameters] = {SetParameter::kT60, SetParameter::kDrr, SetParameter::kEdt,
-                                                  SetParameter::kC50};
 
 std::string fixed(double v, int decimals) {
   if (!std::isfinite(v)) return format_double(v);
@@ -20,43 +19,29 @@ std::string fixed(double v, int decimals) {
   s << std::fixed << std::setprecision(decimals) << v;
   return s.str();
 }
+
+void write_stats_json(JsonWriter& json, const ParameterStats& s) {
+  json.field("mean", s.mean).field("std", s.std).field("median", s.median).field("count", s.count);
+}
+
 }  // namespace
 
-const char* set_parameter_name(SetParameter p) {
-  switch (p) {
-    case SetParameter::kT60: return "T60";
-    case SetParameter::kDrr: return "DRR";
-    case SetParameter::kEdt: return "EDT";
-    case SetParameter::kC50: return "C50";
-  }
-  return "";
-}
-
-const char* set_parameter_unit(SetParameter p) {
-  return p == SetParameter::kT60 || p == SetParameter::kEdt ? "s" : "dB";
-}
-
-double set_parameter_value(const RirMetrics& m, SetParameter p) {
-  switch (p) {
-    case SetParameter::kT60: return m.t60_s;
-    case SetParameter::kDrr: return m.drr_db;
-    case SetParameter::kEdt: return m.edt_s;
-    case SetParameter::kC50: return m.c50_db;
-  }
-  return kMetricsNaN;
-}
+MetricsSummary::MetricsSummary() : values_(metric_columns().size()) {}
 
 void MetricsSummary::add(const RirMetrics& m) {
   ++num_rirs_;
-  for (SetParameter p : kAll) {
-    const double v = set_parameter_value(m, p);
-    if (std::isfinite(v)) values_[(int)p].push_back(v);
+  const auto& columns = metric_columns();
+  for (size_t c = 0; c < columns.size(); ++c) {
+    const double v = m.*columns[c].value;
+    if (std::isfinite(v)) values_[c].push_back(v);
   }
 }
 
-ParameterStats MetricsSummary::stats(SetParameter p) const {
+ParameterStats MetricsSummary::stats(const std::string& name) const { return stats(metric_column_index(name)); }
+
+ParameterStats MetricsSummary::stats(size_t column) const {
   ParameterStats s;
-  std::vector<double> v = values_[(int)p];
+  std::vector<double> v = values_.at(column);
   s.count = v.size();
   if (v.empty()) return s;
   double sum = 0;
@@ -76,21 +61,20 @@ ParameterStats MetricsSummary::stats(SetParameter p) const {
 void write_summary_json(JsonWriter& json, const MetricsSummary& summary) {
   json.begin_object();
   json.field("count", summary.num_rirs());
-  for (SetParameter p : kAll) {
-    const ParameterStats s = summary.stats(p);
-    json.key(set_parameter_name(p)).begin_object();
-    json.field("mean", s.mean).field("std", s.std).field("median", s.median).field("count", s.count);
+  for (size_t c : summary_columns()) {
+    json.key(metric_columns()[c].json_key).begin_object();
+    write_stats_json(json, summary.stats(c));
     json.end_object();
   }
   json.end_object();
 }
 
-int closest_set(const NamedSummary& reference, const std::vector<NamedSummary>& sets, SetParameter p) {
-  const double ref = reference.summary.stats(p).mean;
+int closest_set(const NamedSummary& reference, const std::vector<NamedSummary>& sets, size_t column) {
+  const double ref = reference.summary.stats(column).mean;
   int best = -1;
   double best_diff = INFINITY;
   for (size_t i = 0; i < sets.size(); ++i) {
-    const double d = std::abs(sets[i].summary.stats(p).mean - ref);
+    const double d = std::abs(sets[i].summary.stats(column).mean - ref);
     if (std::isfinite(d) && d < best_diff) {
       best_diff = d;
       best = (int)i;
@@ -108,22 +92,27 @@ void write_reference_table(std::ostream& out, const NamedSummary& reference, con
   out << "# Mean acoustic parameters per RIR set (definition " << definition
       << "); (|mean - reference mean|); * = closest to the reference\n";
   out << std::left << std::setw((int)name_width) << "# set" << std::setw(8) << "n";
-  for (SetParameter p : kAll) {
-    out << std::setw(kCell) << (std::string(set_parameter_name(p)) + " (" + set_parameter_unit(p) + ")");
+  const std::vector<size_t>& columns = paper_table_columns();
+  for (size_t c : columns) {
+    out << std::setw(kCell) << (std::string(metric_columns()[c].name) + " (" + metric_columns()[c].unit + ")");
   }
   out << "\n";
   out << std::setw((int)name_width) << reference.name << std::setw(8) << reference.summary.num_rirs();
-  for (SetParameter p : kAll) out << std::setw(kCell) << fixed(reference.summary.stats(p).mean, 4);
+  for (size_t c : columns) {
+    out << std::setw(kCell) << fixed(reference.summary.stats(c).mean, metric_columns()[c].summary_decimals);
+  }
   out << "(reference)\n";
-  int closest[kNumSetParameters];
-  for (SetParameter p : kAll) closest[(int)p] = closest_set(reference, sets, p);
+  std::vector<int> closest;
+  for (size_t c : columns) closest.push_back(closest_set(reference, sets, c));
   for (size_t i = 0; i < sets.size(); ++i) {
     out << std::setw((int)name_width) << sets[i].name << std::setw(8) << sets[i].summary.num_rirs();
-    for (SetParameter p : kAll) {
-      const double mean = sets[i].summary.stats(p).mean;
-      const double diff = std::abs(mean - reference.summary.stats(p).mean);
-      std::string cell = fixed(mean, 4) + " (" + fixed(diff, 4) + ")";
-      if (closest[(int)p] == (int)i) cell += "*";
+    for (size_t k = 0; k < columns.size(); ++k) {
+      const size_t c = columns[k];
+      const int decimals = metric_columns()[c].summary_decimals;
+      const double mean = sets[i].summary.stats(c).mean;
+      const double diff = std::abs(mean - reference.summary.stats(c).mean);
+      std::string cell = fixed(mean, decimals) + " (" + fixed(diff, decimals) + ")";
+      if (closest[k] == (int)i) cell += "*";
       out << std::setw(kCell) << cell;
     }
     out << "\n";
@@ -138,10 +127,9 @@ void write_reference_json(std::ostream& out, const NamedSummary& reference, cons
   json.field("definition", definition);
   json.key("reference").begin_object();
   json.field("name", reference.name).field("count", reference.summary.num_rirs());
-  for (SetParameter p : kAll) {
-    const ParameterStats s = reference.summary.stats(p);
-    json.key(set_parameter_name(p)).begin_object();
-    json.field("mean", s.mean).field("std", s.std).field("median", s.median).field("count", s.count);
+  for (size_t c : summary_columns()) {
+    json.key(metric_columns()[c].json_key).begin_object();
+    write_stats_json(json, reference.summary.stats(c));
     json.end_object();
   }
   json.end_object();
@@ -149,12 +137,12 @@ void write_reference_json(std::ostream& out, const NamedSummary& reference, cons
   for (size_t i = 0; i < sets.size(); ++i) {
     json.begin_object();
     json.field("name", sets[i].name).field("count", sets[i].summary.num_rirs());
-    for (SetParameter p : kAll) {
-      const ParameterStats s = sets[i].summary.stats(p);
-      json.key(set_parameter_name(p)).begin_object();
-      json.field("mean", s.mean).field("std", s.std).field("median", s.median).field("count", s.count);
-      json.field("diff", std::abs(s.mean - reference.summary.stats(p).mean));
-      json.field("closest", closest_set(reference, sets, p) == (int)i);
+    for (size_t c : summary_columns()) {
+      const ParameterStats s = sets[i].summary.stats(c);
+      json.key(metric_columns()[c].json_key).begin_object();
+      write_stats_json(json, s);
+      json.field("diff", std::abs(s.mean - reference.summary.stats(c).mean));
+      json.field("closest", closest_set(reference, sets, c) == (int)i);
       json.end_object();
     }
     json.end_object();

@@ -13,12 +13,7 @@ namespace tsrir {
 
 class JsonWriter;
 
-// The four single-number parameters, in the paper's Table 1 column order.
-enum class SetParameter { kT60 = 0, kDrr = 1, kEdt = 2, kC50 = 3 };
-constexpr int kNumSetParameters = 4;
-const char* set_parameter_name(SetParameter p);   // "T60", "DRR", "EDT", "C50"
-const char* set_parameter_unit(SetParameter p);   // "s" | "dB"
-double set_parameter_value(const RirMetrics& m, SetParameter p);
+// Statistics per single-number parameter: `column` indexes metric_columns() (metric_columns.h).
 
 struct ParameterStats {
   size_t count = 0;         // finite values only; NaNs (unmeasurable) are left out
@@ -27,16 +22,18 @@ struct ParameterStats {
   double median = kMetricsNaN;
 };
 
-// Accumulates one value per parameter and RIR (4 doubles per RIR, so sets of millions fit).
+// Accumulates one value per parameter and RIR (a few doubles per RIR, so sets of millions fit).
 class MetricsSummary {
  public:
+  MetricsSummary();
   void add(const RirMetrics& m);
   size_t num_rirs() const { return num_rirs_; }
-  ParameterStats stats(SetParameter p) const;
+  ParameterStats stats(size_t column) const;
+  ParameterStats stats(const std::string& name) const;  // by column name, e.g. "T60"
 
  private:
   size_t num_rirs_ = 0;
-  std::array<std::vector<double>, kNumSetParameters> values_;
+  std::vector<std::vector<double>> values_;  // per column
 };
 
 void write_summary_json(JsonWriter& json, const MetricsSummary& summary);
@@ -46,14 +43,15 @@ struct NamedSummary {
   MetricsSummary summary;
 };
 
-// Table 1 as text: one row per set (the reference first), "mean (|diff|)" cells, '*' on the set
-// closest to the reference in each column.
+// Table 1 as text: the paper's columns (T60, DRR, EDT, C50), one row per set (the reference first),
+// "mean (|diff|)" cells, '*' on the set closest to the reference in each column. The JSON carries
+// every column of metric_columns().
 void write_reference_table(std::ostream& out, const NamedSummary& reference, const std::vector<NamedSummary>& sets,
                            const std::string& definition);
 void write_reference_json(std::ostream& out, const NamedSummary& reference, const std::vector<NamedSummary>& sets,
                           const std::string& definition);
 
-// Index of the set with the smallest |mean - reference mean| for p, or -1 if none is finite.
-int closest_set(const NamedSummary& reference, const std::vector<NamedSummary>& sets, SetParameter p);
+// Index of the set with the smallest |mean - reference mean| for the column, or -1 if none is finite.
+int closest_set(const NamedSummary& reference, const std::vector<NamedSummary>& sets, size_t column);
 
 }  // namespace tsrir

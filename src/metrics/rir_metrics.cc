@@ -151,6 +151,10 @@ double iso_late_energy(const IsoDecay& d, size_t k, double fs) {
   return d.tail_energy * std::pow(10.0, -6.0 * t_s / d.lundeby.late_decay_time_s);
 }
 
+// D50 and C80 (ISO 3382-1, fixed 50 and 80 ms limits): the early sums and the noise-compensated
+// late energy of the broadband decay, as C50 uses them.
+void iso_d50_c80(const std::vector<float>& h, size_t onset, double fs, const IsoDecay& bb, RirMetrics* m);
+
 BandMetrics iso_band_metrics(const IsoDecay& d, double center_hz, double fs, bool use_lundeby,
                              const std::string& label, std::vector<std::string>* warnings, std::vector<double>* db) {
   BandMetrics b;
@@ -227,6 +231,7 @@ RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
   const double late = iso_late_energy(bb, te, fs);
   m.c50_db = late > 0 ? 10.0 * std::log10(early / late) : kNaN;
   if (!(late > 0)) m.warnings.push_back("C50: no energy after " + format_double(o.clarity_time_ms) + " ms");
+  iso_d50_c80(h, onset, fs, bb, &m);
 
   const long pre = std::lround(o.direct_pre_ms * 1e-3 * fs), post = std::lround(o.direct_post_ms * 1e-3 * fs);
   const size_t d_begin = (size_t)std::max<long>(0, (long)m.peak_sample - pre);
@@ -274,7 +279,49 @@ RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
   return m;
 }
 
+void iso_d50_c80(const std::vector<float>& h, size_t onset, double fs, const IsoDecay& bb, RirMetrics* m) {
+  const size_t n = h.size();
+  const size_t te50 = (size_t)std::lround(0.050 * fs), te80 = (size_t)std::lround(0.080 * fs);
+  if (onset + te50 < n) {
+    const double early = energy_sum(h, onset, onset + te50);
+    const double all = early + iso_late_energy(bb, te50, fs);
+    m->d50_percent = all > 0 ? 100.0 * early / all : kNaN;
+  } else {
+    m->warnings.push_back("D50: the RIR ends less than 50 ms after the onset");
+  }
+  if (onset + te80 < n) {
+    const double early = energy_sum(h, onset, onset + te80);
+    const double late = iso_late_energy(bb, te80, fs);
+    m->c80_db = late > 0 ? 10.0 * std::log10(early / late) : kNaN;
+    if (!(late > 0)) m->warnings.push_back("C80: no energy after 80 ms");
+  } else {
+    m->warnings.push_back("C80: the RIR ends less than 80 ms after the onset");
+  }
+}
+
 // ------------------------------------------------------------ irstats ----
+
+// D50 and C80 the way irStats computes its CTE: early energy from 2.5 ms before the peak to the
+// limit, late energy after it, trapezoidal sums (irstats.h).
+void irstats_d50_c80(const std::vector<float>& x, size_t t0, double fs, RirMetrics* m) {
+  const size_t n = x.size();
+  const size_t c = (size_t)std::lround(0.0025 * fs);
+  const size_t begin = t0 >= c ? t0 - c : 0;
+  const size_t te50 = (size_t)std::lround(0.050 * fs), te80 = (size_t)std::lround(0.080 * fs);
+  if (t0 + te50 + 1 < n) {
+    const double early = irstats_trapz_energy(x, begin, t0 + te50);
+    const double all = early + irstats_trapz_energy(x, t0 + te50 + 1, n - 1);
+    m->d50_percent = all > 0 ? 100.0 * early / all : kNaN;
+  } else {
+    m->warnings.push_back("D50: early time limit (50 ms) out of range");
+  }
+  if (t0 + te80 + 1 < n) {
+    m->c80_db = 10.0 * std::log10(irstats_trapz_energy(x, begin, t0 + te80) / irstats_trapz_energy(x, t0 + te80 + 1, n - 1));
+  } else {
+    m->warnings.push_back("C80: early time limit (80 ms) out of range");
+  }
+}
+
 
 BandMetrics irstats_band(const double* z, size_t n, double center_hz, double fs, std::vector<std::string>* warnings) {
   BandMetrics b;
@@ -320,6 +367,7 @@ RirMetrics measure_irstats(const Signal& rir, const MetricsOptions& o) {
   m.drr_db = ratios.drr_db;
   m.c50_db = ratios.cte_db;
   m.warnings.insert(m.warnings.end(), ratios.warnings.begin(), ratios.warnings.end());
+  irstats_d50_c80(x, t0, fs, &m);
 
   IsoWorkspace& w = iso_workspace();  // the same scratch buffers serve this definition
   w.energy.assign(x.begin(), x.end());
@@ -349,6 +397,17 @@ MetricsDefinition parse_metrics_definition(const std::string& name) {
   if (name == "iso") return MetricsDefinition::kIso;
   if (name == "irstats") return MetricsDefinition::kIrstats;
   throw Error("unknown metrics definition '" + name + "' (expected iso or irstats)");
+}
+
+void MetricsOptions::Register(OptionsItf* opts) {
+  opts->RegisterEnum("definition", &definition,
+                     {{"iso", MetricsDefinition::kIso}, {"irstats", MetricsDefinition::kIrstats}},
+                     "definition of the parameters");
+  opts->Register("lundeby", &lundeby, "iso: noise-floor subtraction, Lundeby truncation and compensation");
+  opts->Register("direct-pre-ms", &direct_pre_ms, "iso: direct-sound window before the peak (ms)");
+  opts->Register("direct-post-ms", &direct_post_ms, "iso: direct-sound window after the peak (ms)");
+  opts->Register("clarity-ms", &clarity_time_ms, "early/late limit of the clarity index (ms)");
+  opts->Register("onset-db", &onset_threshold_db, "iso: onset = first sample within this many dB of the peak");
 }
 
 std::string metrics_definition_name(MetricsDefinition definition) {

@@ -14,6 +14,7 @@
 //              on the raw EDC, DRR with +-2.5 ms around the peak, CTE (= C50) from 2.5 ms before the
 //              peak to 50 ms after.
 // Values that cannot be measured are NaN, with a line in `warnings` saying why; never guessed.
+// metric_columns.h declares each single-number parameter (unit, definition per convention, output).
 #pragma once
 #include <cstddef>
 #include <limits>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "io/signal.h"
+#include "util/options.h"
 
 namespace tsrir {
 
@@ -42,6 +44,8 @@ struct MetricsOptions {
   double clarity_time_ms = 50.0;
   // iso onset: first sample whose energy is within this many dB of the peak energy.
   double onset_threshold_db = 20.0;
+
+  void Register(OptionsItf* opts);
 };
 
 constexpr double kMetricsNaN = std::numeric_limits<double>::quiet_NaN();
@@ -67,6 +71,8 @@ struct RirMetrics {
   double edt_s = kMetricsNaN;   // mean EDT of the 500 Hz and 1 kHz bands
   double drr_db = kMetricsNaN;
   double c50_db = kMetricsNaN;  // the paper's CTE
+  double d50_percent = kMetricsNaN;  // definition (Deutlichkeit), ISO 3382-1
+  double c80_db = kMetricsNaN;       // clarity with an 80 ms limit, ISO 3382-1
   size_t onset_sample = 0;      // iso onset, or the irstats peak
   size_t peak_sample = 0;       // largest |h|
   BandMetrics broadband;        // center_hz = 0

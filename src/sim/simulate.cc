@@ -6,12 +6,24 @@
 
 #include "io/rir_set.h"
 #include "sim/model.h"
-#include "util/cli.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/parallel.h"
 #include "util/strings.h"
 
 namespace tsrir::sim {
+
+void SimulateOptions::Register(OptionsItf* opts) {
+  opts->Register("sample-rate", &sample_rate_hz, "sample rate, Hz");
+  opts->RegisterAlias("fs", "sample-rate");
+  opts->Register("length", &length, "RIR length in seconds, or 'auto' (direct delay + longest band T60)");
+  opts->Register("model", &model, "model components, e.g. gas (= ism+diffuse)");
+  opts->Register("seed", &seed, "random seed of the stochastic parts");
+  opts->RegisterAlias("random-seed", "seed");
+  opts->Register("num-threads", &num_threads, "threads (RIRs are rendered in parallel)");
+  opts->RegisterEnum("format", &format, {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}},
+                     "output sample format");
+}
 
 size_t rir_length_samples(const std::string& length, double auto_length_s, double sample_rate_hz) {
   double seconds = auto_length_s;

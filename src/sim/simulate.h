@@ -6,6 +6,7 @@
 
 #include "io/audio_io.h"
 #include "sim/room.h"
+#include "util/options.h"
 
 namespace tsrir::sim {
 
@@ -16,6 +17,9 @@ struct SimulateOptions {
   uint64_t seed = 0;
   int num_threads = 1;
   SampleFormat format = SampleFormat::kInt16;
+
+  // --sample-rate (alias --fs), --length, --model, --seed (alias --random-seed), --num-threads, --format.
+  void Register(OptionsItf* opts);
 };
 
 // Length in samples for one room ("auto" or seconds); throws Error for a bad length string.

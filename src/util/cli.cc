@@ -1,21 +1,20 @@
 #include "util/cli.h"
 
+#include <boost/program_options.hpp>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
-#include <mutex>
+#include <set>
+#include <sstream>
 
 #include "util/cleanup.h"
+#include "util/config_file.h"
 #include "util/error.h"
-#include "util/strings.h"
 
 namespace po = boost::program_options;
 
 namespace tsrir {
 namespace {
-
-std::string g_program_name = "tsrir";
-std::mutex g_log_mutex;
 
 extern "C" void on_terminating_signal(int sig) {
   remove_registered_temps_on_signal();
@@ -23,75 +22,180 @@ extern "C" void on_terminating_signal(int sig) {
   std::raise(sig);
 }
 
+const char kPositional[] = "positional-arguments__";
+
+// Boost.Program_options lays out --help and tokenises the command line; values are kept as text
+// and converted by the OptionSpec setters, in command-line order, after the config files.
+void describe(po::options_description* desc, const std::string& name, const OptionSpec& spec,
+              const std::string& help) {
+  auto* value = po::value<std::string>();
+  if (!spec.repeated) value->default_value(spec.default_text, spec.default_text);
+  if (spec.is_flag) value->implicit_value("true", "true");
+  desc->add_options()(name.c_str(), value, help.c_str());
+}
+
 }  // namespace
 
 CommandLine::CommandLine(std::string program, std::string usage)
-    : program_(std::move(program)), usage_(std::move(usage)), options_("Options") {
-  options_.add_options()("help,h", "Print this usage message and exit");
+    : program_(std::move(program)), usage_(std::move(usage)) {}
+
+CommandLine::~CommandLine() = default;
+
+void CommandLine::RegisterSpec(OptionSpec spec) {
+  if (spec.name.empty() || spec.name == "help" || spec.name == "config" || index_.count(spec.name)) {
+    throw Error("option --" + spec.name + " registered twice or reserved (a program bug)");
+  }
+  index_[spec.name] = specs_.size();
+  specs_.push_back(std::move(spec));
 }
 
-void CommandLine::option(const std::string& name, double* value, const std::string& help) {
-  options_.add_options()(name.c_str(), po::value<double>(value)->default_value(*value, format_double(*value, 10)),
-                         help.c_str());
+void CommandLine::RegisterAlias(const std::string& alias, const std::string& name) {
+  auto it = index_.find(name);
+  if (it == index_.end() || alias == "help" || alias == "config" || index_.count(alias)) {
+    throw Error("alias --" + alias + " of --" + name + ": unknown option or name taken (a program bug)");
+  }
+  index_[alias] = it->second;
+  aliases_.emplace_back(alias, name);
 }
 
-void CommandLine::flag(const std::string& name, bool* value, const std::string& help) {
-  options_.add_options()(name.c_str(),
-                         po::value<bool>(value)->default_value(*value, *value ? "true" : "false")->implicit_value(true, "true"),
-                         help.c_str());
-  flags_.emplace_back(name, value);
+const OptionSpec* CommandLine::find(const std::string& name) const {
+  auto it = index_.find(name);
+  return it == index_.end() ? nullptr : &specs_[it->second];
 }
 
-void CommandLine::multi_option(const std::string& name, std::vector<std::string>* values,
-                               const std::string& help) {
-  options_.add_options()(name.c_str(), po::value<std::vector<std::string>>(values)->composing(),
-                         help.c_str());
-}
+std::string CommandLine::hint() const { return "Try '" + program_ + " --help'."; }
 
 std::string CommandLine::usage_text() const {
+  po::options_description desc("Options");
+  desc.add_options()("help,h", "Print this usage message and exit");
+  desc.add_options()("config", po::value<std::string>()->value_name("FILE"),
+                     "Read options from FILE, one --name=value per line ('#' starts a comment); "
+                     "options on the command line override it");
+  for (const auto& spec : specs_) {
+    describe(&desc, spec.name, spec, spec.help);
+    for (const auto& [alias, name] : aliases_) {
+      if (name == spec.name) describe(&desc, alias, spec, "same as --" + spec.name);
+    }
+  }
   std::ostringstream os;
   os << usage_;
   if (!usage_.empty() && usage_.back() != '\n') os << '\n';
-  os << '\n' << options_;
+  os << '\n' << desc;
   return os.str();
+}
+
+void CommandLine::apply(const OptionSpec& spec, const std::string& value, bool has_value, const std::string& where) {
+  std::string text = value;
+  if (!has_value) {
+    if (!spec.is_flag) throw Error(where + "option --" + spec.name + " needs a value (--" + spec.name + "=VALUE)");
+    text = "true";
+  }
+  try {
+    spec.set(text);
+  } catch (const Error& e) {
+    throw Error(where + "invalid value '" + text + "' for --" + spec.name + ": " + e.what());
+  }
 }
 
 std::vector<std::string> CommandLine::parse(int argc, const char* const* argv, int min_positional,
                                             int max_positional) {
-  po::options_description all;
-  all.add(options_);
-  std::vector<std::string> positional;
-  all.add_options()("positional-arguments__", po::value<std::vector<std::string>>(&positional));
+  po::options_description desc;
+  desc.add_options()("help,h", "");
+  desc.add_options()("config", po::value<std::string>(), "");
+  for (const auto& [name, i] : index_) describe(&desc, name, specs_[i], "");
+  desc.add_options()(kPositional, po::value<std::vector<std::string>>());
   po::positional_options_description pos;
-  pos.add("positional-arguments__", -1);
+  pos.add(kPositional, -1);
+
   // A bare boolean "--flag" must not swallow the next word as its value.
-  std::vector<std::string> args(argv + 1, argv + argc);
-  for (auto& a : args) {
-    for (const auto& f : flags_) {
-      if (a == "--" + f.first) a += "=true";
+  // "--name=" (an empty value, as Kaldi allows) goes to Boost as "--name" "".
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
+      const OptionSpec* spec = find(a.substr(2));
+      if (spec && spec->is_flag) a += "=true";
+      const OptionSpec* empty_valued = a.size() > 3 && a.find('=') == a.size() - 1 ? find(a.substr(2, a.size() - 3)) : nullptr;
+      if (empty_valued && !empty_valued->is_flag) {
+        args.push_back(a.substr(0, a.size() - 1));
+        args.emplace_back();
+        continue;
+      }
     }
+    args.push_back(std::move(a));
   }
-  po::variables_map vm;
+
+  struct Item {
+    const OptionSpec* spec;
+    std::string value;
+    bool has_value;
+  };
+  std::vector<Item> command_line;
+  std::vector<std::string> config_files, positional;
   try {
-    auto style = po::command_line_style::default_style & ~po::command_line_style::allow_guessing;
-    po::store(po::command_line_parser(args).options(all).positional(pos).style(style).run(), vm);
-    if (vm.count("help")) {
-      std::cout << usage_text();
-      std::exit(0);
+    const auto style = po::command_line_style::default_style & ~po::command_line_style::allow_guessing;
+    const po::parsed_options parsed = po::command_line_parser(args).options(desc).positional(pos).style(style).run();
+    for (const po::option& o : parsed.options) {
+      if (o.string_key == "help") {
+        std::cout << usage_text();
+        std::exit(0);
+      }
+      if (o.string_key == kPositional) {
+        positional.insert(positional.end(), o.value.begin(), o.value.end());
+      } else if (o.string_key == "config") {
+        config_files.push_back(o.value.empty() ? "" : o.value.front());
+      } else {
+        const OptionSpec* spec = find(o.string_key);
+        if (!spec) throw Error("unknown option '--" + o.string_key + "'");
+        command_line.push_back({spec, o.value.empty() ? "" : o.value.front(), !o.value.empty()});
+      }
     }
-    po::notify(vm);
   } catch (const po::error& e) {
-    throw Error(std::string(e.what()) + "\n\n" + usage_text());
+    throw Error(std::string(e.what()) + "\n" + hint());
   }
+
+  // A repeated option's values come from one place: the first occurrence on the command line (or in
+  // the config files) replaces the default list and anything the config files gave.
+  std::set<const OptionSpec*> cleared;
+  auto set_one = [&](const OptionSpec& spec, const std::string& value, bool has_value, const std::string& where) {
+    if (spec.repeated && cleared.insert(&spec).second) spec.clear();
+    apply(spec, value, has_value, where);
+  };
+  for (const std::string& file : config_files) {
+    for (const ConfigEntry& e : read_config_file(file)) {
+      const std::string where = located(file, e.line, "");
+      if (e.name == "config") throw Error(where + "--config cannot be nested in a config file");
+      const OptionSpec* spec = find(e.name);
+      if (!spec) throw Error(where + "unknown option '--" + e.name + "'\n" + hint());
+      try {
+        set_one(*spec, e.value, e.has_value, where);
+      } catch (const Error& err) {
+        throw Error(std::string(err.what()) + "\n" + hint());
+      }
+    }
+  }
+  cleared.clear();
+  for (const Item& item : command_line) {
+    try {
+      set_one(*item.spec, item.value, item.has_value, "");
+    } catch (const Error& err) {
+      throw Error(std::string(err.what()) + "\n" + hint());
+    }
+  }
+
   const int n = static_cast<int>(positional.size());
   if (n < min_positional || (max_positional >= 0 && n > max_positional)) {
-    throw Error("wrong number of arguments (" + std::to_string(n) + ")\n\n" + usage_text());
+    throw Error("wrong number of arguments (" + std::to_string(n) + "; expected " +
+                (max_positional == min_positional ? std::to_string(min_positional)
+                 : max_positional < 0             ? "at least " + std::to_string(min_positional)
+                                                  : std::to_string(min_positional) + " to " + std::to_string(max_positional)) +
+                ")\n" + hint());
   }
   return positional;
 }
 
 int run_program(const std::string& program, const std::function<int()>& body) {
-  g_program_name = program;
+  set_log_program_name(program);
   std::signal(SIGINT, on_terminating_signal);
   std::signal(SIGTERM, on_terminating_signal);
   std::signal(SIGHUP, on_terminating_signal);
@@ -103,16 +207,6 @@ int run_program(const std::string& program, const std::function<int()>& body) {
     std::cerr << program << ": ERROR: " << e.what() << std::endl;
   }
   return 1;
-}
-
-void log_info(const std::string& message) {
-  std::lock_guard<std::mutex> lock(g_log_mutex);
-  std::cerr << g_program_name << ": " << message << std::endl;
-}
-
-void log_warning(const std::string& message) {
-  std::lock_guard<std::mutex> lock(g_log_mutex);
-  std::cerr << g_program_name << ": WARNING: " << message << std::endl;
 }
 
 }  // namespace tsrir

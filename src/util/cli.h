@@ -1,52 +1,68 @@
-// Kaldi-style command lines over Boost.Program_options: `--name=value` and `--name value`,
-// unknown options are errors, `--help` prints the usage (which must contain an example) and exits 0.
+// Kaldi-style command lines: `--name=value` and `--name value`, unknown options are errors,
+// `--help` prints the usage (which must contain an example) and exits 0, and every program takes
+// `--config=FILE` (Kaldi's config format, util/config_file.h; the command line overrides the file).
+// CommandLine implements OptionsItf (util/options.h), so library option structs register themselves:
+//   CommandLine cli("rir-metrics", usage);
+//   MetricsOptions opts;  opts.Register(&cli);
+//   std::vector<std::string> args = cli.parse(argc, argv, 1, -1);
+// Errors (unknown option, bad value, wrong number of arguments) are an Error whose message ends
+// with the one-line hint "Try '<program> --help'." rather than the whole usage.
 #pragma once
-#include <boost/program_options.hpp>
 #include <functional>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "util/log.h"
+#include "util/options.h"
+
 namespace tsrir {
 
-class CommandLine {
+class CommandLine : public OptionsItf {
  public:
-  // `usage` is printed by --help and on usage errors: what the program does, its synopsis and
-  // at least one example line.
+  // `usage` is printed by --help: what the program does, its synopsis and at least one example line.
   CommandLine(std::string program, std::string usage);
+  ~CommandLine() override;
 
-  // Registers an option; the current value of *value is the default shown in --help.
+  using OptionsItf::Register;
+  void RegisterSpec(OptionSpec spec) override;
+  void RegisterAlias(const std::string& alias, const std::string& name) override;
+
+  // The earlier names of Register, kept for programs not yet converted.
   template <typename T>
   void option(const std::string& name, T* value, const std::string& help) {
-    options_.add_options()(name.c_str(), boost::program_options::value<T>(value)->default_value(*value), help.c_str());
+    Register(name, value, help);
   }
-  // Doubles show their default as written by a person ("0.1", not "0.10000000000000001").
-  void option(const std::string& name, double* value, const std::string& help);
-  // A boolean: `--name`, `--name=true|false` (also 1/0, yes/no).
-  void flag(const std::string& name, bool* value, const std::string& help);
-  // A string option that may be given several times (e.g. --rir-set-parameters).
-  void multi_option(const std::string& name, std::vector<std::string>* values, const std::string& help);
+  void flag(const std::string& name, bool* value, const std::string& help) { Register(name, value, help); }
+  void multi_option(const std::string& name, std::vector<std::string>* values, const std::string& help) {
+    Register(name, values, help);
+  }
 
-  // Parses argv; returns the positional arguments. Exits 0 after printing usage for --help;
-  // throws Error for unknown options, bad values, or a positional count outside [min, max]
-  // (max < 0 = unbounded).
+  // Parses argv (after the --config files); returns the positional arguments. Exits 0 after printing
+  // the usage for --help (or -h); throws Error for unknown options, bad values, unreadable or malformed
+  // config files (naming file:line), or a positional count outside [min, max] (max < 0 = unbounded).
   std::vector<std::string> parse(int argc, const char* const* argv, int min_positional, int max_positional);
 
   std::string usage_text() const;
   const std::string& program() const { return program_; }
+  // The one-line hint that ends every usage error: "Try '<program> --help'."
+  std::string hint() const;
 
  private:
+  const OptionSpec* find(const std::string& name) const;
+  void apply(const OptionSpec& spec, const std::string& value, bool has_value, const std::string& where);
+
   std::string program_;
   std::string usage_;
-  boost::program_options::options_description options_;
-  std::vector<std::pair<std::string, bool*>> flags_;
+  std::vector<OptionSpec> specs_;
+  std::map<std::string, size_t> index_;          // option name or alias -> specs_ index
+  std::vector<std::pair<std::string, std::string>> aliases_;  // (alias, name), in registration order
 };
 
 // Runs a program body: Error and std::exception become "<program>: ERROR: <message>" on stderr
-// and exit status 1. Also installs the SIGINT/SIGTERM handler that removes temporary outputs.
+// and exit status 1. Also names the program in log lines and installs the SIGINT/SIGTERM handler
+// that removes temporary outputs.
 int run_program(const std::string& program, const std::function<int()>& body);
-
-// Progress and log lines go to stderr, prefixed with the program name.
-void log_info(const std::string& message);
-void log_warning(const std::string& message);
 
 }  // namespace tsrir

@@ -117,7 +117,7 @@ TEST_F(RirMetricsCli, TableRowsInInputOrderIndependentOfThreads) {
   ASSERT_EQ(one.status, 0) << one.err;
   const std::vector<std::string> l = lines(one.out);
   ASSERT_EQ(l.size(), 13u);
-  EXPECT_EQ(l[0].rfind("# id T60 EDT DRR C50 T20_62.5 T30_62.5 EDT_62.5", 0), 0u) << l[0];
+  EXPECT_EQ(l[0].rfind("# id T60 EDT DRR C50 D50 C80 T20_62.5 T30_62.5 EDT_62.5", 0), 0u) << l[0];
   for (int i = 0; i < 12; ++i) {
     std::stringstream ss(l[i + 1]);
     std::string id;
@@ -237,7 +237,7 @@ TEST_F(RirMetricsCli, IrstatsDefinitionRuns) {
   const ProgramRun r = run("--definition=irstats --bands " + w);
   ASSERT_EQ(r.status, 0) << r.err;
   // irStats bands at 16 kHz: 125 .. 2000 Hz.
-  EXPECT_EQ(lines(r.out)[0], "# id T60 EDT DRR C50 T20_125 T30_125 EDT_125 T20_250 T30_250 EDT_250 T20_500 T30_500 "
+  EXPECT_EQ(lines(r.out)[0], "# id T60 EDT DRR C50 D50 C80 T20_125 T30_125 EDT_125 T20_250 T30_250 EDT_250 T20_500 T30_500 "
                              "EDT_500 T20_1000 T30_1000 EDT_1000 T20_2000 T30_2000 EDT_2000");
 }
 

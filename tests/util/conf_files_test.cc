@@ -1,0 +1,123 @@
+// Every top-level conf/*.conf is read by its program's --config without an error: the file's
+// options exist and their values parse. A program given only --config stops at its arguments
+// ("wrong number of arguments"), which it checks after reading the config file, so reaching that
+// error proves the file was accepted. A new conf file must be added to the table below.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <dirent.h>
+#include <map>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+const std::string kBin = TSRIR_BIN_DIR;
+const std::string kConf = std::string(TSRIR_SOURCE_DIR) + "/conf";
+
+// conf file -> the command that reads it (the recipe's use).
+const std::map<std::string, std::string> kReaders = {
+    {"rir-simulate.conf", "rir-simulate"},      {"rir-eq.conf", "rir-eq fit"},
+    {"rir-eq-apply.conf", "rir-eq apply"},      {"rir-metrics.conf", "rir-metrics"},
+    {"reverberate.conf", "reverberate-data"},
+};
+
+std::string slurp(const std::string& path) {
+  std::string s;
+  if (FILE* f = std::fopen(path.c_str(), "rb")) {
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) s.append(buf.data(), n);
+    std::fclose(f);
+  }
+  return s;
+}
+
+struct Result {
+  int status;
+  std::string err;
+};
+
+Result run(const std::string& command) {
+  const std::string err_path = "/tmp/tsrir_conf_test_" + std::to_string(getpid()) + ".err";
+  const int rc = std::system((command + " >/dev/null 2>" + err_path).c_str());
+  const std::string err = slurp(err_path);
+  std::remove(err_path.c_str());
+  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, err};
+}
+
+std::string reader_of(const std::string& file) {
+  auto it = kReaders.find(file);
+  if (it != kReaders.end()) return it->second;
+  if (file.rfind("ts-rirgan", 0) == 0) return "ts-rirgan-train";  // conf/ts-rirgan*.conf
+  return "";
+}
+
+}  // namespace
+
+TEST(ConfFiles, EveryConfFileParsesWithItsProgram) {
+  DIR* dir = opendir(kConf.c_str());
+  ASSERT_NE(dir, nullptr) << kConf;
+  int checked = 0;
+  while (dirent* e = readdir(dir)) {
+    const std::string file = e->d_name;
+    if (file.size() < 6 || file.compare(file.size() - 5, 5, ".conf") != 0) continue;
+    const std::string reader = reader_of(file);
+    EXPECT_FALSE(reader.empty()) << "conf/" << file << ": which program reads it? Add it to kReaders.";
+    if (reader.empty()) continue;
+    const std::string program = reader.substr(0, reader.find(' '));
+    if (access((kBin + "/" + program).c_str(), X_OK) != 0) {
+      // ts-rirgan-train exists only in builds with LibTorch.
+      EXPECT_EQ(program, "ts-rirgan-train") << program << " is not built";
+      continue;
+    }
+    const Result r = run(kBin + "/" + reader + " --config=" + kConf + "/" + file);
+    EXPECT_EQ(r.status, 1) << file << ": " << r.err;
+    EXPECT_NE(r.err.find("wrong number of arguments"), std::string::npos) << file << ": " << r.err;
+    ++checked;
+  }
+  closedir(dir);
+  EXPECT_GE(checked, 5);
+}
+
+TEST(ConfFiles, AMisspelledOptionInAConfFileIsCaught) {
+  // The check above can fail: a conf file with an unknown option does not reach the arguments.
+  const std::string path = "/tmp/tsrir_conf_test_" + std::to_string(getpid()) + ".conf";
+  if (FILE* f = std::fopen(path.c_str(), "w")) {
+    std::fputs("# a typo\n--definiton=irstats\n", f);
+    std::fclose(f);
+  }
+  const Result r = run(kBin + "/rir-metrics --config=" + path);
+  std::remove(path.c_str());
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find(path + ":2: unknown option '--definiton'"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("wrong number of arguments"), std::string::npos) << r.err;
+}
+
+TEST(ConfFiles, AliasesAndAConfigFileGiveTheSameRirsAsTheOptions) {
+  char tmpl[] = "/tmp/tsrir_conf_alias_XXXXXX";
+  const std::string dir = mkdtemp(tmpl);
+  if (FILE* f = std::fopen((dir + "/rooms.txt").c_str(), "w")) {
+    std::fputs("r1 room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2 t60=0.4\n", f);
+    std::fclose(f);
+  }
+  if (FILE* f = std::fopen((dir + "/sim.conf").c_str(), "w")) {
+    std::fputs("# as the options of run a\n--sample-rate=8000\n--seed=-5\n--length=0.25\n--format=float\n", f);
+    std::fclose(f);
+  }
+  const std::string sim = kBin + "/rir-simulate ";
+  const std::string rooms = " " + dir + "/rooms.txt ";
+  ASSERT_EQ(run(sim + "--sample-rate=8000 --seed=-5 --length=0.25 --format=float" + rooms + dir + "/a").status, 0);
+  ASSERT_EQ(run(sim + "--fs=8000 --random-seed=-5 --length=0.25 --format=float" + rooms + dir + "/b").status, 0);
+  ASSERT_EQ(run(sim + "--config=" + dir + "/sim.conf" + rooms + dir + "/c").status, 0);
+  ASSERT_EQ(run(sim + "--config=" + dir + "/sim.conf --seed=6" + rooms + dir + "/d").status, 0);
+  const std::string a = slurp(dir + "/a/r1.wav");
+  ASSERT_GT(a.size(), 2000u);
+  EXPECT_EQ(a, slurp(dir + "/b/r1.wav"));
+  EXPECT_EQ(a, slurp(dir + "/c/r1.wav"));
+  EXPECT_NE(a, slurp(dir + "/d/r1.wav"));  // the command line overrides the file's seed
+  EXPECT_EQ(slurp(dir + "/d/r1.wav").size(), a.size());
+  std::system(("rm -rf '" + dir + "'").c_str());
+}
