@@ -12,54 +12,67 @@
 namespace {
 
 const char* kUsage =
-    "Makes a far-field copy of a Kaldi data directory: every recording convolved with an RIR drawn\n"
-    "from the RIR lists and mixed with a noise from the noise lists, started at a random offset and\n"
-    "looped to cover the speech, at an SNR drawn from --snrs (x_f = x ⊛ r + λ·n[t + l]).\n"
+    "Makes a far-field copy of a Kaldi data directory with the options and meaning of Kaldi's\n"
+    "steps/data/reverberate_data_dir.py (docs/kaldi-reverberation.md): each recording convolved with\n"
+    "an RIR drawn from the RIR lists (room by room), plus the isotropic noise of that room and 1..N\n"
+    "point-source noises, each convolved with another RIR of the same room.\n"
     "\n"
     "Usage: reverberate-data [options] <in-data-dir> <out-data-dir>\n"
     "e.g.\n"
-    "  reverberate-data --rir-set-parameters '0.5, rirs/small/rir_list' \\\n"
-    "    --rir-set-parameters '0.5, rirs/medium/rir_list' --noise-set-parameters noise/noise_list \\\n"
-    "    --snrs 1:2 --num-replications 1 --prefix rvb --random-seed 7 data/train data/train_rvb\n"
+    "  reverberate-data --rir-set-parameters '0.5, RIRS_NOISES/simulated_rirs/smallroom/rir_list' \\\n"
+    "    --rir-set-parameters '0.5, RIRS_NOISES/simulated_rirs/mediumroom/rir_list' \\\n"
+    "    --noise-set-parameters RIRS_NOISES/pointsource_noises/noise_list \\\n"
+    "    --foreground-snrs 20:10:15:5:0 --background-snrs 20:10:15:5:0 --max-noises-per-minute 2 \\\n"
+    "    --num-replications 2 --random-seed 1 data/train data/train_rvb\n"
+    "  # the paper's benchmark (tsrir extensions): one unreverberated noise per recording, a random\n"
+    "  # offset, looped, SNR uniform in [1, 2) dB, 16-bit wavs instead of pipes\n"
     "  reverberate-data --rir-set-parameters rir.scp --noise-set-parameters noise.scp \\\n"
-    "    --write-wavs exp/rvb_wavs --num-threads 2 data/test data/test_rvb\n"
+    "    --background-snrs 1..2 --max-noises-per-recording 1 --point-source-noise-rir none \\\n"
+    "    --noise-start random --write-wavs exp/rvb_wavs --num-threads 2 data/test data/test_rvb\n"
     "\n"
     "Inputs: wav.scp and utt2spk (text, segments, utt2uniq, spk2utt, reco2file_and_channel and vad.scp\n"
-    "are carried over when present). Lists are Kaldi rir_list / noise_list files or scps (<id> <rx>).\n"
-    "Set weights and per-item --probability follow Kaldi's reverberate_data_dir.py, including the\n"
-    "smoothing towards uniform; the draws are per recording from (seed, copy, id), so the same seed\n"
-    "gives the same directory for any --num-threads (statistically, not bit-for-bit, equivalent to\n"
-    "Kaldi's Python random sequence). Isotropic noises are only used with RIRs of the room they are\n"
-    "linked to; point-source noises with any RIR. Every noise is added as background noise (not\n"
-    "reverberated); Kaldi's foreground/background SNR options and --max-noises-per-minute do not exist.\n"
+    "are carried over when present); durations from reco2dur, else measured (the input dir is never\n"
+    "written). Lists are Kaldi rir_list / noise_list files or scps (<id> <rx>; a noise scp lists\n"
+    "point-source background noises). Set weights, --probability and the smoothing weights follow\n"
+    "Kaldi's formulas. The same RIR or noise id in two lists (or one list twice) is accepted with a\n"
+    "warning and the entries are kept apart; an empty noise list adds no noise; a '#' line in a list\n"
+    "is an error, as in Kaldi. Choices are drawn per recording from (seed, copy, id), so any\n"
+    "--num-threads gives the same directory (statistically, not bit-for-bit, equal to Kaldi's).\n"
     "\n"
-    "SNR (--snr-reference): early (default, Kaldi's): relative to the speech convolved with the\n"
-    "RIR's direct path and early reflections (1 ms before to 50 ms after its largest sample);\n"
-    "full: relative to the whole reverberant speech. The noise power is that of the samples actually\n"
-    "added (offset and loop included), so the realised SNR is the requested one.\n"
-    "--snrs: 'lo:hi' = uniform in [lo, hi) dB (default 1:2, the paper's benchmark); 'a,b,c' = one of\n"
-    "the values; 'x' = always x.\n"
+    "Per recording (Kaldi's rules): a room by the summed probability of its RIRs and an RIR in it; the\n"
+    "speech is reverberated with probability --speech-rvb-probability; an isotropic noise linked to\n"
+    "the room is added with probability --isotropic-noise-addition-probability (also to recordings\n"
+    "left unreverberated), extended to the recording from time 0 at a --background-snrs SNR; with\n"
+    "probability --pointsource-noise-addition-probability, 1..floor(--max-noises-per-minute *\n"
+    "duration / 60) point-source noises (none for shorter recordings), each through an RIR of the\n"
+    "same room: background ones extended from time 0 at a --background-snrs SNR, foreground ones\n"
+    "added once at a start time uniform over the recording at a --foreground-snrs SNR.\n"
+    "SNR lists: Kaldi's '20:10:0' is a list walked cyclically in an order shuffled once; a range is\n"
+    "written 'lo..hi' (uniform in [lo, hi) dB per noise; tsrir extension).\n"
+    "SNR reference (--snr-reference): early (default, Kaldi's): the speech convolved with the RIR's\n"
+    "direct path and early reflections (1 ms before to 50 ms after its largest sample); full: the\n"
+    "whole reverberant speech.\n"
     "\n"
     "Output: <out-data-dir> with ids <prefix><copy>-<id> (Kaldi's; unchanged without a prefix), sorted\n"
-    "tables, utt2uniq (new id -> original), regenerated spk2utt; checked like\n"
-    "utils/validate_data_dir.sh --no-feats and written to a temporary directory renamed at the end,\n"
-    "so a failure never leaves a partial directory (an existing <out-data-dir> or --write-wavs\n"
-    "directory is replaced only then, as a whole). reco2dur is not carried over (as Kaldi).\n"
-    "wav.scp: without --write-wavs every entry is a pipe that regenerates the recording on the fly,\n"
-    "  [<source pipe> |] <dir>/wav-reverberate --shift-output=true --impulse-response=<rir>\n"
-    "    --additive-signals=<noise> --start-times=0 --snrs=<snr> --additive-offsets=<s>\n"
-    "    --loop-additive-signals=true <source wav or -> - |\n"
+    "tables, utt2uniq (new id -> original), regenerated spk2utt, reco2dur (with --shift-output=true,\n"
+    "the inputs' durations); checked like utils/validate_data_dir.sh --no-feats and written to a\n"
+    "temporary directory renamed at the end, so a failure never leaves a partial directory.\n"
+    "wav.scp: without --write-wavs every entry is a pipe in Kaldi's form that regenerates the\n"
+    "recording on the fly,\n"
+    "  [<source pipe> |] wav-reverberate --shift-output=true --impulse-response=<rir>\n"
+    "    --additive-signals='<noise>,wav-reverberate --impulse-response=<rir2> --duration=<s> <noise2> - |'\n"
+    "    --start-times=0,0 --snrs=10,0 <source wav or -> - |\n"
     "  (all paths shell-quoted; the random draws are written out, so each pipe is deterministic).\n"
+    "  Pipes run --pipe-program (default: wav-reverberate next to this program). Kaldi's own binary\n"
+    "  runs them too; --noise-start=random and --snr-reference=full need ours and are refused for\n"
+    "  another program (--pipe-dialect=auto|tsrir|kaldi overrides that guess).\n"
     "  With --write-wavs=<dir>, 16-bit wavs <dir>/<new-id>.wav are written (any toolkit can read them);\n"
     "  the same seed gives the same audio in both modes. Relative RIR/noise paths are used as given,\n"
     "  as Kaldi does: pipes must run from the same directory.\n"
-    "Recordings shorter than the RIR are fine; shorter noises are looped; RIRs and noises at another\n"
-    "sample rate are resampled to the speech's rate, in both modes; --source-sampling-rate (Kaldi's\n"
-    "option) is accepted and, with --write-wavs, checked against each recording's rate.\n"
+    "RIRs and noises at another sample rate are resampled to the speech's rate, in both modes;\n"
+    "--source-sampling-rate (Kaldi's option) is accepted and, with --write-wavs, checked.\n"
     "Long recordings: with --write-wavs, those beyond --max-in-memory-duration (default 300 s) are\n"
-    "read in passes with memory independent of their length (a 2-hour one: ~30 MB, not ~2 GB) and\n"
-    "give the same wav; a piped one is first copied into the wav directory, as is the unscaled output\n"
-    "(float, ~230 MB per hour at 16 kHz), both removed at once. Pipe mode streams in wav-reverberate.\n";
+    "read in passes with memory independent of their length and give the same wav.\n";
 
 // Kaldi's reverberate_data_dir.py takes booleans as "--shift-output true"; accept that form too.
 std::vector<std::string> join_boolean_values(int argc, char** argv, const std::vector<std::string>& flags) {
@@ -100,11 +113,27 @@ int main(int argc, char** argv) {
                     "'[weight,] noise_list': a noise list (Kaldi noise_list or scp) and its weight; repeatable");
     cl.option("num-replications", &o.num_replications, "number of reverberated copies of each recording");
     cl.option("prefix", &o.prefix, "id prefix; copies are <prefix><i>-<id> (forced to rvb for several copies)");
-    cl.option("snrs", &o.snrs, "SNRs in dB: lo:hi (uniform range), a,b,c (list) or x");
+    cl.option("foreground-snrs", &o.foreground_snrs,
+              "SNRs (dB) of foreground noises: Kaldi's a:b:c list (cyclic), or lo..hi (uniform; extension)");
+    cl.option("background-snrs", &o.background_snrs,
+              "SNRs (dB) of background noises: Kaldi's a:b:c list (cyclic), or lo..hi (uniform; extension)");
     cl.option("snr-reference", &snr_reference, "early (Kaldi: direct + early reverberation) or full");
     cl.option("speech-rvb-probability", &o.speech_rvb_probability, "probability of reverberating a recording");
-    cl.option("noise-addition-probability", &o.noise_addition_probability, "probability of adding noise");
-    cl.option("noise-start", &o.noise_start, "random (offset uniform over the noise) or zero");
+    cl.option("isotropic-noise-addition-probability", &o.isotropic_noise_addition_probability,
+              "probability of adding the room's isotropic noise");
+    cl.option("pointsource-noise-addition-probability", &o.pointsource_noise_addition_probability,
+              "probability of adding point-source noises");
+    cl.option("max-noises-per-minute", &o.max_noises_per_minute,
+              "at most floor(N * duration / 60) point-source noises per recording (Kaldi)");
+    cl.option("max-noises-per-recording", &o.max_noises_per_recording,
+              "extension: if > 0, 1..N point-source noises per recording whatever its duration");
+    cl.option("noise-start", &o.noise_start,
+              "zero (Kaldi: background noises extended from their start) or random (extension: from a random "
+              "offset, looped over the whole recording)");
+    cl.option("point-source-noise-rir", &o.point_source_noise_rir,
+              "same-room (Kaldi: point sources convolved with an RIR of the recording's room) or none (extension)");
+    cl.option("pipe-dialect", &o.pipe_dialect,
+              "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
     cl.flag("shift-output", &o.shift_output, "advance the output by the RIR's direct-path delay");
     cl.flag("normalize-output", &o.normalize_output, "rescale each output to its input's power");
     cl.flag("include-original-data", &o.include_original_data, "also keep the originals as copy 0");

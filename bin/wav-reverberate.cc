@@ -37,7 +37,8 @@ const char* kUsage =
     "output is the full convolution including the reverberant tail (Kaldi replaces the tail by the\n"
     "signal's first samples); 16-bit output is rounded to nearest (Kaldi truncates), a <= 1 LSB\n"
     "difference; --help prints to stdout.\n"
-    "Extensions (tsrir; Kaldi's binary rejects them): --additive-offsets, --loop-additive-signals,\n"
+    "Extensions (tsrir; Kaldi's binary rejects them): --additive-offsets, --loop-additive-signals, --additive-loops,\n"
+    "--additive-impulse-responses, --additive-durations (Kaldi's nested noise commands in one process),\n"
     "--snr-reference, --max-in-memory-duration.\n"
     "Long inputs: beyond --max-in-memory-duration (default 300 s) the input is read in three passes\n"
     "(statistics; reverberation to a temporary file; scaling and encoding), so a 2-hour utterance\n"
@@ -47,12 +48,10 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool usage_error = false;
-  const int status = tsrir::run_program("wav-reverberate", [&]() {
-    tsrir::KaldiOptionParser po(kUsage);
-    tsrir::WavReverberateConfig config;
-    float volume = 0.0f, duration = 0.0f;
-    std::string snr_reference = "early";
+  tsrir::WavReverberateConfig config;
+  float volume = 0.0f, duration = 0.0f;
+  std::string snr_reference = "early";
+  auto define = [&](tsrir::KaldiOptionParser& po) {
     po.add("multi-channel-output", &config.multi_channel_output,
            "One output channel per RIR channel (additive signals must have as many channels)");
     po.add("input-wave-channel", &config.input_wave_channel, "Channel of the input used to make the output");
@@ -79,6 +78,16 @@ int main(int argc, char** argv) {
     po.add("loop-additive-signals", &config.reverb.loop_additive_signals,
            "tsrir extension: tile each additive signal from its offset to the end of the reverberant signal; "
            "its power for the SNR is then measured over exactly the samples added");
+    po.add("additive-loops", &config.additive_loops,
+           "tsrir extension: comma-separated true/false, one per additive signal: loop that signal as "
+           "--loop-additive-signals does for all");
+    po.add("additive-impulse-responses", &config.additive_impulse_responses,
+           "tsrir extension: comma-separated RIR rxfilenames, one field per additive signal (empty = none): "
+           "that signal is first reverberated as Kaldi's nested `wav-reverberate --impulse-response=<rir> "
+           "<signal> -` would, in this process");
+    po.add("additive-durations", &config.additive_durations,
+           "tsrir extension: comma-separated durations (s), one per additive signal (0 = as is): that signal "
+           "is first repeated or cut to it as Kaldi's nested `wav-reverberate --duration=<s>` would");
     po.add("max-in-memory-duration", &config.max_in_memory_s,
            "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
            "with memory independent of their length (same output; a piped input is first copied to a "
@@ -86,22 +95,13 @@ int main(int argc, char** argv) {
     po.add("snr-reference", &snr_reference,
            "tsrir extension: early = Kaldi's early-reverberation energy, full = the whole reverberant "
            "speech x*h (mean over its N+M-1 samples)");
-    if (po.parse(argc, argv) == tsrir::KaldiOptionParser::Outcome::kHelp) {
-      std::cout << po.usage_text();
-      return 0;
-    }
-    if (po.positionals().size() != 2) {
-      std::cerr << po.usage_text();
-      usage_error = true;
-      return 1;
-    }
-    config.reverb.volume = volume;
-    config.reverb.duration_s = duration;
-    config.reverb.snr_reference = tsrir::parse_snr_reference(snr_reference);
-    tsrir::run_wav_reverberate(config, po.positionals()[0], po.positionals()[1]);
-    return 0;
-  });
-  // Kaldi binaries return -1 (255) on errors and exit(1) on a usage error.
-  if (status != 0 && !usage_error) return 255;
-  return status;
+  };
+  return tsrir::run_kaldi_program("wav-reverberate", kUsage, argc, argv, 2, define,
+                                  [&](const std::vector<std::string>& args) {
+                                    config.reverb.volume = volume;
+                                    config.reverb.duration_s = duration;
+                                    config.reverb.snr_reference = tsrir::parse_snr_reference(snr_reference);
+                                    tsrir::run_wav_reverberate(config, args[0], args[1]);
+                                    return 0;
+                                  });
 }

@@ -62,7 +62,7 @@ gan_opts=""           # extra ts-rirgan-train options (default: the original's t
 gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
                       # spin-wait: 2 threads measured ~10x slower than 1 under load)
 metrics_definition=irstats
-snrs=1:2
+snrs=1..2             # SNR range lo..hi dB (reverberate-data --background-snrs; Kaldi lists a:b:c work too)
 write_wavs=false      # far-field dirs: pipes in wav.scp (Kaldi's way) or 16-bit wavs
 rir_sets="gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"
 train_sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"   # stages 7-8
@@ -72,9 +72,18 @@ lm_url=www.openslr.org/resources/11
 help_message="Usage: $0 [options]   (see the top of $0 for the stages)
   --demo true|false, --demo-size small|tiny, --stage N, --stop-stage M, --nj N, --num-threads N,
   --data DIR, --exp DIR, --results FILE, --corpus-dir DIR, --librispeech-dir DIR, --but-dir DIR,
-  --gan-model DIR, --gan-steps N, --gan-width W, --seed N, --snrs lo:hi, ... (every variable above)
+  --gan-model DIR, --gan-steps N, --gan-width W, --seed N, --snrs lo..hi, ... (every variable above)
 e.g.: $0 --demo
-      $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan"
+      $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan
+Environment:
+  KALDI_ROOT  a compiled Kaldi checkout: enables stage 8 (chain TDNN training and decoding), Kaldi's
+              run.pl/queue.pl/slurm.pl and validate_data_dir.sh; unset = stages 0-7 only
+  TSRIR_CMD   how parallel jobs run (cmd.sh): run.pl (default with Kaldi), queue.pl (SGE; reads
+              conf/queue.conf), slurm.pl (reads conf/slurm.conf); without Kaldi local/run_jobs.sh.
+              A program run with --num-threads N asks the queue for N slots (--num-threads N to \$cmd);
+              conf/queue.conf and conf/slurm.conf are copied into every directory jobs start from
+  TSRIR_BIN   tsrir's bin/ (default ../../build/bin); compute nodes need the same absolute path
+See docs/recipe.md for cluster set-up, GPU, disk and time per stage."
 
 # `--demo` alone (the README's form) means --demo true; --demo also changes defaults, which
 # options given on the command line still override.
@@ -143,7 +152,15 @@ run_logged() {  # [JOB=1:N] <log> <command...>: through $run_cmd (default $train
   local spec=() l                                   # argument order; on failure shows the log's tail
   if [[ "$1" =~ ^[A-Za-z_][A-Za-z0-9_]*=[0-9]+(:[0-9]+)?$ ]]; then spec=("$1"); shift; fi
   l=$1; shift
-  if ! ${run_cmd:-$train_cmd} ${spec[@]+"${spec[@]}"} "$l" "$@"; then
+  # A program that runs threads asks the queue for that many slots, as Kaldi's scripts do
+  # (queue.pl/slurm.pl: --num-threads N; run.pl records it).
+  local threads=() a prev=""
+  for a in "$@"; do
+    case $a in --num-threads=*) threads=(--num-threads "${a#--num-threads=}") ;; esac
+    [ "$prev" = --num-threads ] && threads=(--num-threads "$a")
+    prev=$a
+  done
+  if ! ${run_cmd:-$train_cmd} ${threads[@]+"${threads[@]}"} ${spec[@]+"${spec[@]}"} "$l" "$@"; then
     # The log of the first failed job (run.pl's footer records each job's exit code).
     local shown; shown=$(grep -l '^# Ended (code [1-9]' ${l//JOB/*} 2>/dev/null | head -n 1 || true)
     tail -n 20 "${shown:-${l//JOB/1}}" >&2 || true
@@ -425,19 +442,24 @@ fi
 # ---------------------------------------------------------------------------------------------
 if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
   begin_stage 7 "far-field data dirs (reverberate-data, SNR $snrs dB, noise at a random offset, looped)"
-  need_program reverberate-data wav-reverberate
+  need_program reverberate-data wav-reverberate wav-to-duration
   require "$data/noise/noise_list"
   made=()
   farfield() {  # <in-dir> <rir-list> <out-dir>
     local in=$1 rir_list=$2 out=$3 sig wavs=()
     require "$in/wav.scp" "$rir_list"
+    # Durations once per clean dir (the recipe's own stage-1 output), as Kaldi's get_reco2dur.sh
+    # does: every far-field set made from it then reads them instead of opening each recording.
+    if [ ! -s "$in/reco2dur" ] || [ "$(count "$in/reco2dur")" -ne "$(count "$in/wav.scp")" ]; then
+      run_logged "$exp/log/reco2dur_$(basename "$in").log" wav-to-duration "scp:$in/wav.scp" "ark,t:$in/reco2dur"
+    fi
     sig="snrs=$snrs seed=$seed wavs=$write_wavs $(cat "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" "$conf/reverberate.conf" 2>/dev/null | md5sum)"
     local name; name=$(basename "$out")
     if ! is_done "$exp/farfield/$name.done" "$sig"; then
       [ "$write_wavs" = true ] && wavs=(--write-wavs "$data/wav/$name")
       run_logged "$exp/log/reverberate_$name.log" reverberate-data --config="$conf/reverberate.conf" \
         --rir-set-parameters "1.0, $rir_list" --noise-set-parameters "$data/noise/noise_list" \
-        --snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
+        --background-snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
       check_data_dir "$out"
       # Pipes regenerate the audio: wavs of an earlier --write-wavs run would be stale.
       [ "$write_wavs" = true ] || rm -rf "${data:?}/wav/$name"

@@ -30,11 +30,14 @@ std::string pipe_number(double value) {
 }
 
 std::vector<RecordingPlan> plan_recordings(const std::map<std::string, std::string>& wav_scp,
-                                           const AugmentSources& sources, const SnrSpec& snrs,
-                                           const PlanOptions& options) {
+                                           const std::map<std::string, double>& duration_s,
+                                           const AugmentSources& sources, const SnrSpec& foreground_snrs,
+                                           const SnrSpec& background_snrs, const PlanOptions& options) {
   if (options.num_replications < 1) throw Error("--num-replications must be at least 1");
   std::vector<double> rir_weights;
   for (const auto& r : sources.rirs) rir_weights.push_back(r.probability);
+  SnrSequence foreground(foreground_snrs, Rng::for_item(options.random_seed, "foreground-snrs"));
+  SnrSequence background(background_snrs, Rng::for_item(options.random_seed, "background-snrs"));
   std::vector<RecordingPlan> plans;
   const int first_copy = options.include_original_data ? 0 : 1;
   for (int copy = first_copy; copy <= options.num_replications; ++copy) {
@@ -44,26 +47,22 @@ std::vector<RecordingPlan> plan_recordings(const std::map<std::string, std::stri
       plan.source_id = id;
       plan.new_id = copy_id(id, options.prefix, copy);
       plan.source_rx = rx;
-      if (copy > 0) {
-        Rng rng = Rng::for_item(options.random_seed, std::to_string(copy) + "/" + id);
-        const double u_rvb = rng.uniform();
-        const double u_rir = rng.uniform();
-        const double u_add = rng.uniform();
-        const double u_noise = rng.uniform();
-        const double u_offset = rng.uniform();
-        std::string room;
-        if (!sources.rirs.empty() && u_rvb < options.speech_rvb_probability) {
-          plan.rir = static_cast<long>(weighted_index(rir_weights, u_rir));
-          room = sources.rirs[static_cast<size_t>(plan.rir)].room_id;
-        }
-        std::vector<size_t> candidates = sources.noises_for_room(room);
-        if (!candidates.empty() && u_add < options.noise_addition_probability) {
-          std::vector<double> w;
-          for (size_t i : candidates) w.push_back(sources.noises[i].probability);
-          plan.noise = static_cast<long>(candidates[weighted_index(w, u_noise)]);
-          plan.noise_offset_fraction = options.random_noise_start ? u_offset : 0.0;
-          plan.snr_db = pipe_rounded(snrs.draw(rng));
-        }
+      auto d = duration_s.find(id);
+      if (d == duration_s.end()) throw Error("internal: no duration for recording '" + id + "'");
+      plan.duration_s = d->second;
+      Rng rng = Rng::for_item(options.random_seed, std::to_string(copy) + "/" + id);
+      const double u_rir = rng.uniform();
+      const double u_rvb = rng.uniform();
+      if (!sources.rirs.empty()) {
+        const long rir = static_cast<long>(weighted_index(rir_weights, u_rir));
+        plan.room = sources.rirs[static_cast<size_t>(rir)].room_id;
+        if (u_rvb < options.speech_rvb_probability) plan.rir = rir;
+      }
+      NoisePlanContext context{sources, plan.room, plan.duration_s, options.noise, rng, foreground, background};
+      for (const auto& type : noise_types()) type->plan(context, &plan.noises);
+      if (copy == 0) {  // the original: Kaldi draws (and advances its SNR lists) but applies nothing
+        plan.rir = -1;
+        plan.noises.clear();
       }
       plans.push_back(std::move(plan));
     }
@@ -73,13 +72,38 @@ std::vector<RecordingPlan> plan_recordings(const std::map<std::string, std::stri
 
 void resolve_noise_offsets(const std::map<long, double>& noise_duration_s, std::vector<RecordingPlan>* plans) {
   for (RecordingPlan& plan : *plans) {
-    if (plan.noise < 0) continue;
-    auto it = noise_duration_s.find(plan.noise);
-    if (it == noise_duration_s.end()) throw Error("internal: no duration for noise " + std::to_string(plan.noise));
-    // Rounding down keeps the offset strictly inside the noise.
-    plan.noise_offset_s = std::floor(plan.noise_offset_fraction * it->second * 1e6) / 1e6;
+    for (PlannedNoise& noise : plan.noises) {
+      if (!noise.loop) continue;
+      auto it = noise_duration_s.find(noise.noise);
+      if (it == noise_duration_s.end()) throw Error("internal: no duration for noise " + std::to_string(noise.noise));
+      // Rounding down keeps the offset strictly inside the noise.
+      noise.offset_s = std::floor(noise.offset_fraction * it->second * 1e6) / 1e6;
+    }
   }
 }
+
+std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program) {
+  const NoiseChoice& choice = sources.noises.at(static_cast<size_t>(noise.noise));
+  if (!noise.needs_nested_reverberation()) return choice.rxfilename;
+  std::string command = shell_quote(program);
+  if (noise.rir >= 0)
+    command += " " + shell_quote("--impulse-response=" + sources.rirs.at(static_cast<size_t>(noise.rir)).rxfilename);
+  if (noise.extend_to_s > 0) command += " --duration=" + pipe_number(noise.extend_to_s);
+  if (is_pipe_rxfilename(choice.rxfilename)) return trim(choice.rxfilename) + " " + command + " - - |";
+  std::string file = trim(choice.rxfilename);
+  if (starts_with(file, "-")) file = "./" + file;
+  return command + " " + shell_quote(file) + " - |";
+}
+
+namespace {
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? "," : "") + items[i];
+  return out;
+}
+
+}  // namespace
 
 std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources, const PipeOptions& options) {
   if (!plan.modified()) return plan.source_rx;
@@ -100,18 +124,54 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   if (!options.normalize_output) out += " --normalize-output=false";
   if (plan.rir >= 0)
     out += " " + shell_quote("--impulse-response=" + sources.rirs[static_cast<size_t>(plan.rir)].rxfilename);
-  if (plan.noise >= 0) {
-    const NoiseChoice& noise = sources.noises[static_cast<size_t>(plan.noise)];
-    if (noise.rxfilename.find(',') != std::string::npos)
-      throw Error(noise.where + ": noise rxfilename '" + noise.rxfilename +
-                  "' contains a comma, which wav-reverberate's --additive-signals cannot hold; use --write-wavs");
-    out += " " + shell_quote("--additive-signals=" + noise.rxfilename);
-    out += " --start-times=0";
-    out += " " + shell_quote("--snrs=" + pipe_number(plan.snr_db));
-    out += " " + shell_quote("--additive-offsets=" + pipe_number(plan.noise_offset_s));
-    out += " --loop-additive-signals=true";
-    if (options.snr_reference != SnrReference::kEarlyReverb)
+  if (!plan.noises.empty()) {
+    std::vector<std::string> signals, starts, snrs, offsets, loops, nested_rirs, nested_durations;
+    bool any_loop = false, any_nested = false;
+    for (const PlannedNoise& noise : plan.noises) {
+      // Our program does the nested step in its own process (one process per noise less).
+      const bool in_process = options.tsrir_extensions && noise.needs_nested_reverberation();
+      any_nested |= in_process;
+      nested_rirs.push_back(in_process && noise.rir >= 0 ? sources.rirs[static_cast<size_t>(noise.rir)].rxfilename : "");
+      nested_durations.push_back(in_process ? pipe_number(noise.extend_to_s) : "0");
+      if (nested_rirs.back().find(',') != std::string::npos)
+        throw Error(sources.rirs[static_cast<size_t>(noise.rir)].where + ": RIR rxfilename '" + nested_rirs.back() +
+                    "' contains a comma, which wav-reverberate's lists cannot hold; use --write-wavs");
+      const std::string rx = in_process ? sources.noises[static_cast<size_t>(noise.noise)].rxfilename
+                                        : noise_signal_rx(noise, sources, options.program);
+      if (rx.find(',') != std::string::npos) {
+        const NoiseChoice& choice = sources.noises[static_cast<size_t>(noise.noise)];
+        throw Error(choice.where + ": noise '" + choice.id + "' gives the signal '" + rx +
+                    "', which contains a comma, which wav-reverberate's --additive-signals cannot hold; use --write-wavs");
+      }
+      signals.push_back(rx);
+      starts.push_back(pipe_number(noise.start_time_s));
+      snrs.push_back(pipe_number(noise.snr_db));
+      offsets.push_back(pipe_number(noise.offset_s));
+      loops.push_back(noise.loop ? "true" : "false");
+      any_loop |= noise.loop;
+    }
+    out += " " + shell_quote("--additive-signals=" + joined(signals));
+    out += " " + shell_quote("--start-times=" + joined(starts));
+    out += " " + shell_quote("--snrs=" + joined(snrs));
+    if (any_nested) {
+      bool any_rir = false;
+      for (const std::string& r : nested_rirs) any_rir |= !r.empty();
+      if (any_rir) out += " " + shell_quote("--additive-impulse-responses=" + joined(nested_rirs));
+      out += " " + shell_quote("--additive-durations=" + joined(nested_durations));
+    }
+    if (any_loop) {
+      if (!options.tsrir_extensions)
+        throw Error("--noise-start=random needs tsrir's wav-reverberate (--additive-offsets, --additive-loops); "
+                    "the pipe program " + options.program + " is taken to be Kaldi's");
+      out += " " + shell_quote("--additive-offsets=" + joined(offsets));
+      out += " " + shell_quote("--additive-loops=" + joined(loops));
+    }
+    if (options.snr_reference != SnrReference::kEarlyReverb) {
+      if (!options.tsrir_extensions)
+        throw Error("--snr-reference=full needs tsrir's wav-reverberate; the pipe program " + options.program +
+                    " is taken to be Kaldi's");
       out += " --snr-reference=" + snr_reference_name(options.snr_reference);
+    }
   }
   out += " " + input + " - |";
   return out;

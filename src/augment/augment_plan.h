@@ -1,6 +1,8 @@
-// What reverberate-data does to each recording of each copy, decided up front from
-// (seed, copy, recording id) alone, so the same seed gives the same directory for any thread
-// count and the pipe written into wav.scp regenerates exactly what --write-wavs materialises.
+// What reverberate-data does to each recording of each copy, decided up front: the RIR and room
+// from (seed, copy, recording id) alone, the noises by their noise types (noise_type.h), SNRs from
+// Kaldi's cyclic lists walked in (copy, recording id) order. So the same seed gives the same
+// directory for any thread count, and the pipe written into wav.scp regenerates exactly what
+// --write-wavs materialises.
 #pragma once
 #include <cstdint>
 #include <map>
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "augment/augment_sources.h"
+#include "augment/noise_type.h"
 #include "augment/reverberate.h"
 #include "augment/sampling.h"
 
@@ -18,8 +21,7 @@ struct PlanOptions {
   bool include_original_data = false;
   std::string prefix;                     // "" = ids unchanged (single copy only)
   double speech_rvb_probability = 1.0;
-  double noise_addition_probability = 1.0;
-  bool random_noise_start = true;         // --noise-start=random|zero
+  NoisePlanOptions noise;
   uint64_t random_seed = 0;
 };
 
@@ -28,25 +30,27 @@ struct RecordingPlan {
   std::string source_id;        // recording id in the input wav.scp
   std::string new_id;
   std::string source_rx;
-  long rir = -1;                // index into AugmentSources::rirs, -1 = none
-  long noise = -1;              // index into AugmentSources::noises, -1 = none
-  double snr_db = 0.0;          // rounded to the digits written into the pipe
-  double noise_offset_fraction = 0.0;  // in [0, 1) of the noise's duration
-  double noise_offset_s = 0.0;  // set by resolve_noise_offsets(), rounded like snr_db
-  bool modified() const { return rir >= 0 || noise >= 0; }
+  double duration_s = 0.0;      // of the input recording (reco2dur)
+  std::string room;             // room of the RIR draw ("" = no RIRs)
+  long rir = -1;                // index into AugmentSources::rirs, -1 = speech not reverberated
+  std::vector<PlannedNoise> noises;
+  bool modified() const { return rir >= 0 || !noises.empty(); }
 };
 
 // "<prefix><copy>-<id>" (Kaldi's reverberate_data_dir.py), or the id itself without a prefix.
 std::string copy_id(const std::string& id, const std::string& prefix, int copy);
 
-// One plan per (copy, recording), copies in order, recordings in wav.scp (byte) order.
-// Per recording, draws in a fixed order from Rng::for_item(seed, "<copy>/<id>"): reverberate?,
-// RIR, add noise?, noise, noise offset, SNR.
+// One plan per (copy, recording), copies in order, recordings in wav.scp (byte) order. Per
+// recording, from Rng::for_item(seed, "<copy>/<id>"): the RIR (hence the room) by probability,
+// reverberate?, then each noise type's draws. The room is drawn even when the speech is not
+// reverberated, and copy 0 (the original) takes its draws and SNRs too, as in Kaldi.
+// `duration_s` must hold every recording.
 std::vector<RecordingPlan> plan_recordings(const std::map<std::string, std::string>& wav_scp,
-                                           const AugmentSources& sources, const SnrSpec& snrs,
-                                           const PlanOptions& options);
+                                           const std::map<std::string, double>& duration_s,
+                                           const AugmentSources& sources, const SnrSpec& foreground_snrs,
+                                           const SnrSpec& background_snrs, const PlanOptions& options);
 
-// Turns offset fractions into seconds given each used noise's duration (noise index -> s).
+// Turns looped noises' offset fractions into seconds given each used noise's duration (noise index -> s).
 void resolve_noise_offsets(const std::map<long, double>& noise_duration_s, std::vector<RecordingPlan>* plans);
 
 // Rounds a value to the fixed decimals used in the pipe (so both output modes use equal values).
@@ -58,13 +62,23 @@ struct PipeOptions {
   bool shift_output = true;
   bool normalize_output = true;
   SnrReference snr_reference = SnrReference::kEarlyReverb;
+  // false: the pipe program may be Kaldi's binary, so options only tsrir's wav-reverberate has
+  // (--additive-offsets, --additive-loops, --snr-reference) are refused with an error.
+  bool tsrir_extensions = true;
 };
+
+// The rxfilename of one planned noise's signal: the noise itself, or Kaldi's nested
+// "<program> [--impulse-response=<rir>] [--duration=<s>] <noise> - |" ("<noise pipe> <program> ... - - |").
+std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program);
 
 // The wav.scp value for a plan: the original rxfilename if nothing is applied, else
 // "[<source pipe> |] <program> --shift-output=... [--impulse-response=<rir>]
-// [--additive-signals=<noise> --start-times=0 --snrs=<snr> --additive-offsets=<s>
-// --loop-additive-signals=true] <source file or -> - |", every argument shell-quoted. Throws if a noise
-// rxfilename contains a comma (wav-reverberate's list separator).
+// [--additive-signals=<n1>,<n2> --start-times=<t1>,<t2> --snrs=<s1>,<s2>
+// [--additive-offsets=... --additive-loops=...]] <source file or -> - |", every argument
+// shell-quoted. A noise needing Kaldi's nested step (its own RIR, extension to the recording) is
+// that nested command for Kaldi's program, and for ours (tsrir_extensions) the plain noise with
+// --additive-impulse-responses / --additive-durations, the same computation in one process.
+// Throws if a noise signal's rxfilename contains a comma (the list separator).
 std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources, const PipeOptions& options);
 
 }  // namespace tsrir

@@ -1,9 +1,8 @@
 #include "augment/augment_sources.h"
 
-#include <map>
-#include <optional>
 #include <set>
 
+#include "augment/noise_type.h"
 #include "augment/sampling.h"
 #include "io/kaldi_lists.h"
 #include "util/cli.h"
@@ -11,14 +10,35 @@
 
 namespace tsrir {
 
-std::vector<size_t> AugmentSources::noises_for_room(const std::string& room_id) const {
+std::vector<size_t> AugmentSources::noises_of_type(const std::string& type) const {
   std::vector<size_t> out;
-  for (size_t i = 0; i < noises.size(); ++i) {
-    const NoiseChoice& n = noises[i];
-    if (n.noise_type == "isotropic" ? (!room_id.empty() && n.room_linkage == room_id) : true) out.push_back(i);
-  }
+  for (size_t i = 0; i < noises.size(); ++i)
+    if (noises[i].noise_type == type) out.push_back(i);
   return out;
 }
+
+namespace {
+
+std::vector<double> set_weights(const std::vector<std::string>& texts, const std::string& option,
+                                std::vector<SetParameters>* sets) {
+  std::vector<std::optional<double>> weights;
+  for (const std::string& text : texts) {
+    sets->push_back(parse_set_parameters(text, option));
+    weights.push_back(sets->back().weight);
+  }
+  if (sets->empty()) return {};
+  return resolve_set_weights(weights, option);
+}
+
+void warn_duplicate(std::map<std::string, std::string>* seen, const std::string& kind, const std::string& id,
+                    const std::string& where) {
+  auto [it, inserted] = seen->emplace(id, where);
+  if (!inserted)
+    log_warning(where + ": " + kind + " id '" + id + "' already listed at " + it->second +
+                " (accepted as Kaldi does; both entries are kept and drawn separately)");
+}
+
+}  // namespace
 
 AugmentSources load_augment_sources(const std::vector<std::string>& rir_set_parameters,
                                     const std::vector<std::string>& noise_set_parameters,
@@ -26,22 +46,14 @@ AugmentSources load_augment_sources(const std::vector<std::string>& rir_set_para
   AugmentSources sources;
 
   std::vector<SetParameters> rir_sets;
-  std::vector<std::optional<double>> rir_weights;
-  for (const std::string& text : rir_set_parameters) {
-    rir_sets.push_back(parse_set_parameters(text, "--rir-set-parameters"));
-    rir_weights.push_back(rir_sets.back().weight);
-  }
-  std::vector<double> rir_set_weight;
-  if (!rir_sets.empty()) rir_set_weight = resolve_set_weights(rir_weights, "--rir-set-parameters");
+  const std::vector<double> rir_set_weight = set_weights(rir_set_parameters, "--rir-set-parameters", &rir_sets);
   std::map<std::string, std::string> rir_seen;  // id -> where
-  std::set<std::string> rooms;
   for (size_t s = 0; s < rir_sets.size(); ++s) {
     const std::string& path = rir_sets[s].path;
     std::vector<RirListEntry> entries = read_rir_list(path);
-    if (entries.empty()) throw Error(path + ": RIR list is empty");
     std::vector<std::optional<double>> given;
     for (const auto& e : entries) given.push_back(e.probability);
-    std::vector<double> p = item_probabilities(given, rir_smoothing_weight, path);
+    std::vector<double> p = kaldi_smoothed_probabilities(given, rir_smoothing_weight, rir_set_weight[s], path);
     for (size_t i = 0; i < entries.size(); ++i) {
       const RirListEntry& e = entries[i];
       RirChoice c;
@@ -49,52 +61,44 @@ AugmentSources load_augment_sources(const std::vector<std::string>& rir_set_para
       c.room_id = e.room_id.empty() ? e.rir_id : e.room_id;
       c.rxfilename = e.rxfilename;
       c.where = path + ":" + std::to_string(e.line);
-      c.probability = p[i] * rir_set_weight[s];
-      auto [it, inserted] = rir_seen.emplace(c.id, c.where);
-      if (!inserted) throw Error(located(path, e.line, "RIR id '" + c.id + "' already listed at " + it->second));
-      rooms.insert(c.room_id);
+      c.probability = p[i];
+      warn_duplicate(&rir_seen, "RIR", c.id, c.where);
+      sources.rirs_by_room[c.room_id].push_back(sources.rirs.size());
       sources.rirs.push_back(std::move(c));
     }
   }
+  std::set<std::string> rooms;
+  for (const auto& [room, indices] : sources.rirs_by_room) rooms.insert(room);
 
   std::vector<SetParameters> noise_sets;
-  std::vector<std::optional<double>> noise_weights;
-  for (const std::string& text : noise_set_parameters) {
-    noise_sets.push_back(parse_set_parameters(text, "--noise-set-parameters"));
-    noise_weights.push_back(noise_sets.back().weight);
-  }
-  std::vector<double> noise_set_weight;
-  if (!noise_sets.empty()) noise_set_weight = resolve_set_weights(noise_weights, "--noise-set-parameters");
+  sources.noise_set_weights = set_weights(noise_set_parameters, "--noise-set-parameters", &noise_sets);
   std::map<std::string, std::string> noise_seen;
-  bool warned_foreground = false;
   for (size_t s = 0; s < noise_sets.size(); ++s) {
     const std::string& path = noise_sets[s].path;
     std::vector<NoiseListEntry> entries = read_noise_list(path);
-    if (entries.empty()) throw Error(path + ": noise list is empty");
-    std::vector<std::optional<double>> given;
-    for (const auto& e : entries) given.push_back(e.probability);
-    std::vector<double> p = item_probabilities(given, noise_smoothing_weight, path);
-    for (size_t i = 0; i < entries.size(); ++i) {
-      const NoiseListEntry& e = entries[i];
-      if (e.noise_type == "isotropic" && !rooms.count(e.room_linkage))
-        throw Error(located(path, e.line, "isotropic noise '" + e.noise_id + "' is linked to room '" + e.room_linkage +
-                                              "', which no --rir-set-parameters list contains"));
-      if (e.bg_fg_type == "foreground" && !warned_foreground) {
-        log_warning(located(path, e.line, "foreground noises are added like background noise (looped from a random "
-                                          "offset over the whole utterance)"));
-        warned_foreground = true;
-      }
+    if (entries.empty()) log_warning(path + ": the noise list is empty; no noise is added from it (as in Kaldi)");
+    for (const NoiseListEntry& e : entries) {
       NoiseChoice c;
       c.id = e.noise_id;
       c.noise_type = e.noise_type;
+      c.bg_fg_type = e.bg_fg_type;
       c.room_linkage = e.room_linkage;
       c.rxfilename = e.rxfilename;
       c.where = path + ":" + std::to_string(e.line);
-      c.probability = p[i] * noise_set_weight[s];
-      auto [it, inserted] = noise_seen.emplace(c.id, c.where);
-      if (!inserted) throw Error(located(path, e.line, "noise id '" + c.id + "' already listed at " + it->second));
+      c.set = s;
+      c.given_probability = e.probability;
+      const NoiseType* type = find_noise_type(c.noise_type);
+      if (!type) throw Error(c.where + ": unknown --noise-type '" + c.noise_type + "'");
+      type->check(c, rooms);
+      warn_duplicate(&noise_seen, "noise", c.id, c.where);
       sources.noises.push_back(std::move(c));
     }
+  }
+  for (const auto& type : noise_types()) {
+    std::vector<NoiseChoice*> of_type;
+    for (NoiseChoice& n : sources.noises)
+      if (n.noise_type == type->name()) of_type.push_back(&n);
+    if (!of_type.empty()) type->assign_probabilities(of_type, sources.noise_set_weights, noise_smoothing_weight);
   }
   return sources;
 }

@@ -1,6 +1,9 @@
 // The RIRs and noises reverberate-data draws from: Kaldi rir_list / noise_list files (or scps),
-// each with a set weight, flattened into one weighted list of RIRs and one of noises.
+// each with a set weight, flattened into one weighted list of RIRs (grouped by room) and one list
+// of noises whose probabilities each noise type (noise_type.h) assigns by Kaldi's rules.
 #pragma once
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,24 +19,29 @@ struct RirChoice {
 
 struct NoiseChoice {
   std::string id;
-  std::string noise_type;     // "isotropic" | "point-source"
+  std::string noise_type;     // a registered noise type: "isotropic" | "point-source"
+  std::string bg_fg_type = "background";  // "background" | "foreground"
   std::string room_linkage;   // isotropic noises: the room they were recorded in
   std::string rxfilename;
   std::string where;
-  double probability = 0.0;   // over all noises of all sets (sums to 1)
+  size_t set = 0;                          // index of its --noise-set-parameters
+  std::optional<double> given_probability; // --probability in the list
+  double probability = 0.0;   // set by its noise type (within the group it is drawn from)
 };
 
 struct AugmentSources {
   std::vector<RirChoice> rirs;
   std::vector<NoiseChoice> noises;
-  // Noises usable with an RIR of `room_id` ("" = not reverberated): isotropic noises linked to
-  // that room and every point-source noise; their probabilities (not renormalised).
-  std::vector<size_t> noises_for_room(const std::string& room_id) const;
+  std::vector<double> noise_set_weights;
+  std::map<std::string, std::vector<size_t>> rirs_by_room;  // room id -> indices into rirs
+  // Indices of the noises of one type.
+  std::vector<size_t> noises_of_type(const std::string& type) const;
 };
 
-// Reads the sets ("[weight,] list" each). Errors name the list file and line: an empty list, a
-// duplicate RIR or noise id across sets, an isotropic noise linked to a room that no RIR list
-// contains, weights that do not leave room for the unweighted sets.
+// Reads the sets ("[weight,] list" each). The same RIR or noise id in two lists (or a list given
+// twice) is accepted as in Kaldi, with a warning: the entries stay apart (indices, not ids, identify
+// them). An empty noise list adds nothing (Kaldi); an empty RIR list is an error. Errors name the
+// list file and line.
 AugmentSources load_augment_sources(const std::vector<std::string>& rir_set_parameters,
                                     const std::vector<std::string>& noise_set_parameters,
                                     double rir_smoothing_weight, double noise_smoothing_weight);

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "util/cli.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -215,6 +216,30 @@ std::string KaldiOptionParser::escape_for_echo(const std::string& word) {
   }
   out += quote;
   return out;
+}
+
+int run_kaldi_program(const std::string& name, const std::string& usage, int argc, const char* const* argv,
+                      size_t num_positionals, const std::function<void(KaldiOptionParser&)>& define,
+                      const std::function<int(const std::vector<std::string>&)>& body) {
+  bool finished = false;  // false after an exception: the status is then run_program's error code
+  const int status = run_program(name, [&]() {
+    KaldiOptionParser po(usage);
+    define(po);
+    if (po.parse(argc, argv) == KaldiOptionParser::Outcome::kHelp) {
+      std::cout << po.usage_text();
+      finished = true;
+      return 0;
+    }
+    if (po.positionals().size() != num_positionals) {
+      std::cerr << po.usage_text();
+      finished = true;
+      return 1;
+    }
+    const int rc = body(po.positionals());
+    finished = true;
+    return rc;
+  });
+  return status != 0 && !finished ? 255 : status;
 }
 
 }  // namespace tsrir

@@ -5,6 +5,7 @@
 // `--`, names are case-insensitive with `_` == `-`, and the standard options --config, --help,
 // --print-args and --verbose exist.
 #pragma once
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -60,5 +61,13 @@ class KaldiOptionParser {
   bool print_args_ = true;
   int verbose_ = 0;
 };
+
+// The frame of a Kaldi drop-in program: `define` registers the options; argv is parsed; --help
+// prints the usage to stdout (exit 0); a positional count other than `num_positionals` prints it to
+// stderr (exit 1); else `body` runs with the positionals and its result is the exit status. An
+// error (Error, std::exception) is reported on stderr and exits 255, as Kaldi's binaries (-1) do.
+int run_kaldi_program(const std::string& name, const std::string& usage, int argc, const char* const* argv,
+                      size_t num_positionals, const std::function<void(KaldiOptionParser&)>& define,
+                      const std::function<int(const std::vector<std::string>&)>& body);
 
 }  // namespace tsrir

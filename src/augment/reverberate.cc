@@ -85,7 +85,7 @@ std::vector<float> reverberate_channel(const std::vector<float>& input, double s
 
   for (size_t i = 0; i < additive.size(); ++i) {
     const AdditivePlacement p = place_additive(additive[i], i, y.size(), sample_rate_hz, reference_energy,
-                                               options.loop_additive_signals);
+                                               options.loop_additive_signals || additive[i].loop);
     add_placed(p, 0, y.data(), y.size());
     if (parts) {
       std::vector<float> alone(y.size(), 0.0f);

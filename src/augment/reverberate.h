@@ -61,6 +61,7 @@ struct AdditiveSignal {
   double snr_db = 0.0;
   double start_time_s = 0.0;    // where it enters the unshifted reverberant signal: int(t * fs)
   double offset_s = 0.0;        // extension: first sample read from it, round(offset * fs)
+  bool loop = false;            // extension: looped as with ReverbOptions::loop_additive_signals
 };
 
 struct ReverbOptions {

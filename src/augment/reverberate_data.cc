@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdlib>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -12,8 +13,10 @@
 
 #include "augment/augment_plan.h"
 #include "augment/augment_sources.h"
+#include "augment/noise_signal.h"
 #include "augment/reverberate_stream.h"
 #include "augment/sampling.h"
+#include "augment/wav_duration.h"
 #include "augment/wav_reverberate.h"
 #include "io/atomic_output.h"
 #include "io/audio_io.h"
@@ -65,19 +68,12 @@ class LoadOnceCache {
   std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
 };
 
+// A pipe's WAV header is enough when it states the size (flac -d, sox): the command is stopped
+// after it, as Kaldi's get_reco2dur.sh does; otherwise it is read to the end.
 double audio_duration_s(const std::string& rx, const std::string& where) {
-  try {
-    if (is_pipe_rxfilename(rx) || trim(rx) == "-") {
-      AudioInfo info;
-      std::vector<std::vector<float>> channels = read_audio_channels(rx, &info, where);
-      return static_cast<double>(channels.at(0).size()) / info.sample_rate_hz;
-    }
-    AudioInfo info = probe_audio(trim(rx));
-    if (info.frames <= 0) throw Error("zero-length audio");
-    return static_cast<double>(info.frames) / info.sample_rate_hz;
-  } catch (const Error& e) {
-    throw Error(where + ": " + e.what());
-  }
+  const double seconds = rx_duration_s(rx, false, where);
+  if (!(seconds > 0)) throw Error(where + ": zero-length audio");
+  return seconds;
 }
 
 // Kaldi's ids for the tables keyed by recording or utterance; `rename_first_value` also renames
@@ -102,12 +98,56 @@ void copy_renamed_table(const std::string& in_path, const std::string& out_path,
   write_table(out_path, std::move(rows));
 }
 
+// Each recording's duration: from <in-dir>/reco2dur where it has one (Kaldi's script reads it),
+// else measured (a pipe is run once, as Kaldi's get_reco2dur.sh does; the input dir is not written).
+std::map<std::string, double> recording_durations(const std::string& in_dir, const DataDir& input, int num_threads) {
+  std::map<std::string, double> out;
+  std::vector<std::pair<std::string, std::string>> missing;
+  for (const auto& [id, rx] : input.wav_scp) {
+    auto it = input.reco2dur.find(id);
+    if (it != input.reco2dur.end()) out[id] = it->second;
+    else missing.emplace_back(id, rx);
+  }
+  if (missing.empty()) return out;
+  if (missing.size() > 100)
+    log_info(in_dir + ": measuring the duration of " + std::to_string(missing.size()) +
+             " recordings (no reco2dur entry for them)");
+  std::vector<double> measured(missing.size());
+  parallel_for(missing.size(), std::max(1, num_threads), [&](size_t i) {
+    measured[i] = audio_duration_s(missing[i].second, in_dir + "/wav.scp: recording '" + missing[i].first + "'");
+  });
+  for (size_t i = 0; i < missing.size(); ++i) out[missing[i].first] = measured[i];
+  return out;
+}
+
+std::string real_program_path(const std::string& program) {
+  std::string path = program;
+  if (program.find('/') == std::string::npos) {
+    const char* env = std::getenv("PATH");
+    for (const std::string& dir : split(env ? env : "", ':')) {
+      const std::string candidate = (dir.empty() ? "." : dir) + "/" + program;
+      if (access(candidate.c_str(), X_OK) == 0) {
+        path = candidate;
+        break;
+      }
+    }
+  }
+  std::error_code ec;
+  const fs::path real = fs::canonical(path, ec);
+  return ec ? program : real.string();
+}
+
 bool path_is_inside(const std::string& path, const std::string& dir) {
   const std::string p = absolute_path(path), d = absolute_path(dir);
   return p.size() > d.size() && p.compare(0, d.size(), d) == 0 && p[d.size()] == '/';
 }
 
 }  // namespace
+
+bool is_tsrir_pipe_program(const std::string& program) {
+  const std::string ours = default_pipe_program();
+  return program == ours || real_program_path(program) == real_program_path(ours);
+}
 
 std::string default_pipe_program() {
   char buffer[4096];
@@ -124,10 +164,18 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
                                             const ReverberateDataOptions& options) {
   if (options.speech_rvb_probability < 0 || options.speech_rvb_probability > 1)
     throw Error("--speech-rvb-probability must be in [0, 1]");
-  if (options.noise_addition_probability < 0 || options.noise_addition_probability > 1)
-    throw Error("--noise-addition-probability must be in [0, 1]");
+  if (options.isotropic_noise_addition_probability < 0 || options.isotropic_noise_addition_probability > 1)
+    throw Error("--isotropic-noise-addition-probability must be in [0, 1]");
+  if (options.pointsource_noise_addition_probability < 0 || options.pointsource_noise_addition_probability > 1)
+    throw Error("--pointsource-noise-addition-probability must be in [0, 1]");
+  if (options.max_noises_per_minute < 0) throw Error("--max-noises-per-minute cannot be negative");
+  if (options.max_noises_per_recording < 0) throw Error("--max-noises-per-recording cannot be negative");
   if (options.noise_start != "random" && options.noise_start != "zero")
     throw Error("--noise-start must be random or zero, got '" + options.noise_start + "'");
+  if (options.point_source_noise_rir != "same-room" && options.point_source_noise_rir != "none")
+    throw Error("--point-source-noise-rir must be same-room or none, got '" + options.point_source_noise_rir + "'");
+  if (options.pipe_dialect != "auto" && options.pipe_dialect != "tsrir" && options.pipe_dialect != "kaldi")
+    throw Error("--pipe-dialect must be auto, tsrir or kaldi, got '" + options.pipe_dialect + "'");
   if (absolute_path(in_dir) == absolute_path(out_dir)) throw Error("input and output data dirs are the same");
 
   const DataDir input = read_data_dir(in_dir);
@@ -136,7 +184,9 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
                                                       options.rir_smoothing_weight, options.noise_smoothing_weight);
   if (sources.rirs.empty() && sources.noises.empty())
     throw Error("nothing to apply: give --rir-set-parameters and/or --noise-set-parameters");
-  const SnrSpec snrs = SnrSpec::parse(options.snrs, "--snrs");
+  const SnrSpec foreground_snrs = SnrSpec::parse(options.foreground_snrs, "--foreground-snrs");
+  const SnrSpec background_snrs = SnrSpec::parse(options.background_snrs, "--background-snrs");
+  const std::map<std::string, double> durations = recording_durations(in_dir, input, options.num_threads);
 
   PlanOptions plan_options;
   plan_options.num_replications = options.num_replications;
@@ -147,17 +197,25 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     plan_options.prefix = "rvb";
   }
   plan_options.speech_rvb_probability = options.speech_rvb_probability;
-  plan_options.noise_addition_probability = options.noise_addition_probability;
-  plan_options.random_noise_start = options.noise_start == "random";
+  plan_options.noise.isotropic_noise_addition_probability = options.isotropic_noise_addition_probability;
+  plan_options.noise.pointsource_noise_addition_probability = options.pointsource_noise_addition_probability;
+  plan_options.noise.max_noises_per_minute = options.max_noises_per_minute;
+  plan_options.noise.max_noises_per_recording = options.max_noises_per_recording;
+  plan_options.noise.random_noise_start = options.noise_start == "random";
+  plan_options.noise.point_source_noise_rir = options.point_source_noise_rir == "same-room";
   plan_options.random_seed = options.random_seed;
-  std::vector<RecordingPlan> plans = plan_recordings(input.wav_scp, sources, snrs, plan_options);
+  std::vector<RecordingPlan> plans =
+      plan_recordings(input.wav_scp, durations, sources, foreground_snrs, background_snrs, plan_options);
 
   std::map<long, double> noise_duration_s;
   std::set<long> used_rirs;
   for (const RecordingPlan& plan : plans) {
-    if (plan.noise >= 0 && !noise_duration_s.count(plan.noise)) {
-      const NoiseChoice& n = sources.noises[static_cast<size_t>(plan.noise)];
-      noise_duration_s[plan.noise] = audio_duration_s(n.rxfilename, n.where + " (noise '" + n.id + "')");
+    for (const PlannedNoise& noise : plan.noises) {
+      if (noise.loop && !noise_duration_s.count(noise.noise)) {
+        const NoiseChoice& n = sources.noises[static_cast<size_t>(noise.noise)];
+        noise_duration_s[noise.noise] = audio_duration_s(n.rxfilename, n.where + " (noise '" + n.id + "')");
+      }
+      if (noise.rir >= 0) used_rirs.insert(noise.rir);
     }
     if (plan.rir >= 0) used_rirs.insert(plan.rir);
   }
@@ -173,7 +231,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   ReverberateDataSummary summary;
   for (const RecordingPlan& plan : plans) {
     summary.reverberated += plan.rir >= 0;
-    summary.with_noise += plan.noise >= 0;
+    summary.with_noise += !plan.noises.empty();
   }
 
   std::unique_ptr<OwnedOutputDir> wav_dir;
@@ -188,6 +246,8 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     pipe.shift_output = options.shift_output;
     pipe.normalize_output = options.normalize_output;
     pipe.snr_reference = options.snr_reference;
+    pipe.tsrir_extensions = options.pipe_dialect == "tsrir" ||
+                            (options.pipe_dialect == "auto" && is_tsrir_pipe_program(pipe.program));
     for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = format_pipe(plan, sources, pipe);
   } else {
     const std::string final_wav_dir = absolute_path(options.write_wavs);
@@ -205,7 +265,6 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     reverb.shift_output = options.shift_output;
     reverb.normalize_output = options.normalize_output;
     reverb.snr_reference = options.snr_reference;
-    reverb.loop_additive_signals = true;
 
     LoadOnceCache<PreparedRir> rir_cache;
     LoadOnceCache<std::vector<float>> noise_cache;
@@ -226,28 +285,26 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
         throw Error(where + ": sample rate " + format_double(rate) + " Hz, but --source-sampling-rate is " +
                     format_double(options.source_sampling_rate_hz));
       std::shared_ptr<const PreparedRir> rir;
-      if (plan.rir >= 0) {
-        const RirChoice& choice = sources.rirs[static_cast<size_t>(plan.rir)];
-        rir = rir_cache.get({plan.rir, rate}, [&] {
+      auto load_rir = [&](long index) {
+        const RirChoice& choice = sources.rirs[static_cast<size_t>(index)];
+        return rir_cache.get({index, rate}, [&] {
           std::vector<std::vector<float>> ch =
               read_channels_at_rate(choice.rxfilename, rate, choice.where + " (RIR '" + choice.id + "')");
           return PreparedRir(std::move(ch.at(0)), rate);
         });
-      }
+      };
+      if (plan.rir >= 0) rir = load_rir(plan.rir);
       std::vector<AdditiveSignal> additive;
-      if (plan.noise >= 0) {
-        const NoiseChoice& choice = sources.noises[static_cast<size_t>(plan.noise)];
-        std::shared_ptr<const std::vector<float>> noise = noise_cache.get({plan.noise, rate}, [&] {
+      for (const PlannedNoise& planned : plan.noises) {
+        const NoiseChoice& choice = sources.noises[static_cast<size_t>(planned.noise)];
+        std::shared_ptr<const std::vector<float>> noise = noise_cache.get({planned.noise, rate}, [&] {
           std::vector<std::vector<float>> ch =
               read_channels_at_rate(choice.rxfilename, rate, choice.where + " (noise '" + choice.id + "')");
           return std::move(ch.at(0));
         });
-        AdditiveSignal a;
-        a.samples = noise;
-        a.snr_db = plan.snr_db;
-        a.start_time_s = 0.0;
-        a.offset_s = plan.noise_offset_s;
-        additive.push_back(std::move(a));
+        std::shared_ptr<const PreparedRir> noise_rir;
+        if (planned.rir >= 0) noise_rir = load_rir(planned.rir);
+        additive.push_back(planned_noise_signal(planned, noise, noise_rir.get(), rate));
       }
       long long clipped_here = 0;
       if (!speech.on_disk()) {
@@ -304,6 +361,10 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
         output.segments[new_utt] = s;
       }
     }
+  }
+  // Shifted outputs keep the input's length, so its durations carry over to the new ids.
+  if (options.shift_output) {
+    for (const RecordingPlan& plan : plans) output.reco2dur[plan.new_id] = plan.duration_s;
   }
   write_data_dir(out.path(), output);
   if (fs::exists(in_dir + "/reco2file_and_channel"))

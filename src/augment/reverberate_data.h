@@ -15,10 +15,16 @@ struct ReverberateDataOptions {
   std::vector<std::string> noise_set_parameters;   // "[weight,] noise_list"
   int num_replications = 1;
   std::string prefix;                              // forced to "rvb" for >1 copy or the original
-  std::string snrs = "1:2";                        // see SnrSpec
+  std::string foreground_snrs = "20:10:0";         // Kaldi's ':' list (cyclic) or lo..hi (SnrSpec)
+  std::string background_snrs = "20:10:0";
   double speech_rvb_probability = 1.0;
-  double noise_addition_probability = 1.0;
-  std::string noise_start = "random";              // random | zero
+  double isotropic_noise_addition_probability = 1.0;
+  double pointsource_noise_addition_probability = 1.0;
+  int max_noises_per_minute = 2;
+  int max_noises_per_recording = 0;                // extension: > 0 replaces the per-minute cap
+  std::string noise_start = "zero";                // zero (Kaldi) | random (extension: offset, looped)
+  std::string point_source_noise_rir = "same-room";  // same-room (Kaldi) | none (extension)
+  std::string pipe_dialect = "auto";               // auto | tsrir | kaldi: may pipes use our extensions?
   bool shift_output = true;
   bool normalize_output = true;
   bool include_original_data = false;
@@ -42,7 +48,7 @@ struct ReverberateDataSummary {
   size_t with_noise = 0;     // entries with noise
 };
 
-// Reads `in_dir`, writes `out_dir` (and with write_wavs the wavs) atomically: on any error the
+// Reads `in_dir` (its reco2dur when present, else the recordings' lengths), writes `out_dir` (and with write_wavs the wavs) atomically: on any error the
 // previous contents stay and no partial directory appears. The result is checked with
 // validate_data_dir() before it is committed.
 ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
@@ -52,5 +58,9 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
 // exists there (so pipes use our implementation even when Kaldi's is first on PATH), else the
 // bare name, found through PATH when the pipe runs.
 std::string default_pipe_program();
+
+// Whether `program` (a path, or a name looked up in PATH) is the wav-reverberate that
+// default_pipe_program() names, i.e. one that takes tsrir's extension options.
+bool is_tsrir_pipe_program(const std::string& program);
 
 }  // namespace tsrir

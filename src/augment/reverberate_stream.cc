@@ -90,7 +90,7 @@ StreamResult reverberate_stream(const std::string& input_path, const std::string
     const size_t y_length = rir ? n + rir->size() - 1 : n;
     for (size_t i = 0; i < channels[c].additive.size(); ++i)
       pass[c].placements.push_back(place_additive(channels[c].additive[i], i, y_length, fs, reference_energy[c],
-                                                  options.loop_additive_signals));
+                                                  options.loop_additive_signals || channels[c].additive[i].loop));
     pass[c].geometry = output_geometry(n, rir, options, fs);
     if (pass[c].geometry.length != pass[0].geometry.length || pass[c].geometry.available != pass[0].geometry.available)
       throw Error("output channels differ in length (impulse responses of different lengths)");

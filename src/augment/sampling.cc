@@ -1,7 +1,9 @@
 #include "augment/sampling.h"
 
 #include <cmath>
+#include <utility>
 
+#include "util/cli.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -21,53 +23,43 @@ SetParameters parse_set_parameters(const std::string& text, const std::string& o
   return out;
 }
 
-std::vector<double> resolve_set_weights(const std::vector<std::optional<double>>& weights,
-                                        const std::string& option) {
-  double given = 0.0;
-  size_t missing = 0;
-  for (const auto& w : weights) {
-    if (w) given += *w;
-    else ++missing;
-  }
-  if (given > 1.0 + 1e-6 && missing > 0)
-    throw Error(option + ": the given weights sum to " + format_double(given) +
-                " > 1, leaving nothing for the sets without a weight");
-  std::vector<double> out;
-  double total = 0.0;
-  for (const auto& w : weights) {
-    out.push_back(w ? *w : (1.0 - given) / static_cast<double>(missing));
-    total += out.back();
-  }
-  if (!(total > 0)) throw Error(option + ": all set weights are zero");
-  for (double& w : out) w /= total;
-  return out;
-}
-
-std::vector<double> item_probabilities(const std::vector<std::optional<double>>& given,
-                                       double smoothing_weight, const std::string& context) {
-  if (given.empty()) throw Error(context + ": the list is empty");
+std::vector<double> kaldi_smoothed_probabilities(const std::vector<std::optional<double>>& given,
+                                                 double smoothing_weight, double target_sum,
+                                                 const std::string& context) {
   if (smoothing_weight < 0 || smoothing_weight > 1)
     throw Error("smoothing weight must be in [0, 1], got " + format_double(smoothing_weight));
+  if (given.empty()) return {};
   double specified = 0.0;
   size_t missing = 0;
   for (const auto& p : given) {
     if (p) {
-      if (*p < 0) throw Error(context + ": negative --probability");
+      if (*p < 0) throw Error(context + ": negative probability or weight");
       specified += *p;
     } else {
       ++missing;
     }
   }
-  const double leftover = missing ? std::max(0.0, 1.0 - specified) / static_cast<double>(missing) : 0.0;
+  double uniform = 0.0;
+  if (missing > 0 && specified < 1) {
+    uniform = (1.0 - specified) / static_cast<double>(missing);
+  } else if (missing > 0) {
+    log_warning(context + ": the given probabilities sum to " + format_double(specified) +
+                " >= 1; the items without one get probability zero (as in Kaldi)");
+  }
   std::vector<double> p;
   double total = 0.0;
   for (const auto& g : given) {
-    p.push_back(g ? *g : leftover);
+    p.push_back(g ? (1.0 - smoothing_weight) * *g + smoothing_weight * uniform : uniform);
     total += p.back();
   }
-  const double n = static_cast<double>(given.size());
-  for (double& v : p) v = (1.0 - smoothing_weight) * (total > 0 ? v / total : 1.0 / n) + smoothing_weight / n;
+  if (!(total > 0)) throw Error(context + ": all probabilities are zero");
+  for (double& v : p) v = v / total * target_sum;
   return p;
+}
+
+std::vector<double> resolve_set_weights(const std::vector<std::optional<double>>& weights,
+                                        const std::string& option) {
+  return kaldi_smoothed_probabilities(weights, 0.0, 1.0, option);
 }
 
 size_t weighted_index(const std::vector<double>& weights, double u) {
@@ -90,24 +82,31 @@ SnrSpec SnrSpec::parse(const std::string& text, const std::string& option) {
   SnrSpec spec;
   spec.text_ = trim(text);
   if (spec.text_.empty()) throw Error(option + ": empty SNR specification");
-  if (spec.text_.find(':') != std::string::npos) {
-    std::vector<std::string> parts = split(spec.text_, ':');
-    if (parts.size() != 2)
-      throw Error(option + " '" + text + "': a range is lo:hi; for a list of values use commas (20,10,0)");
+  const size_t dots = spec.text_.find("..");
+  if (dots != std::string::npos) {
     spec.is_range_ = true;
-    spec.lo_ = parse_double(trim(parts[0]), option + " lower bound");
-    spec.hi_ = parse_double(trim(parts[1]), option + " upper bound");
+    spec.lo_ = parse_double(trim(spec.text_.substr(0, dots)), option + " '" + text + "' lower bound");
+    spec.hi_ = parse_double(trim(spec.text_.substr(dots + 2)), option + " '" + text + "' upper bound");
     if (spec.hi_ < spec.lo_) throw Error(option + " '" + text + "': upper bound below lower bound");
-  } else {
-    spec.values_ = parse_double_list(spec.text_, ',', option);
-    if (spec.values_.empty()) throw Error(option + ": empty SNR list");
+    return spec;
   }
+  if (spec.text_.find(',') != std::string::npos)
+    throw Error(option + " '" + text + "': Kaldi's SNR lists are ':'-separated (20:10:0); a range is lo..hi");
+  spec.values_ = parse_double_list(spec.text_, ':', option);
+  if (spec.values_.empty()) throw Error(option + ": empty SNR list");
   return spec;
 }
 
-double SnrSpec::draw(Rng& rng) const {
-  if (is_range_) return rng.uniform(lo_, hi_);
-  return values_[static_cast<size_t>(rng.below(values_.size()))];
+SnrSequence::SnrSequence(SnrSpec spec, Rng shuffle_rng) : spec_(std::move(spec)), order_(spec_.values()) {
+  // Fisher-Yates, as Python's random.shuffle (uniform over permutations).
+  for (size_t i = order_.size(); i > 1; --i) std::swap(order_[i - 1], order_[shuffle_rng.below(i)]);
+}
+
+double SnrSequence::next(Rng& per_recording_rng) {
+  if (spec_.is_range()) return per_recording_rng.uniform(spec_.lo(), spec_.hi());
+  const double v = order_[index_];
+  index_ = (index_ + 1) % order_.size();
+  return v;
 }
 
 }  // namespace tsrir

@@ -1,8 +1,10 @@
-// The random choices of reverberate-data: weighted RIR/noise sets with Kaldi's probability rules
-// (reverberate_data_dir.py) and SNR specifications. Draws come from a per-utterance tsrir::Rng,
-// so results are statistically equivalent to Kaldi's script (not bit-identical to its MT19937
-// sequence) and never depend on the thread count.
+// The random choices of reverberate-data: weighted RIR/noise sets with the probability rules of
+// Kaldi's steps/data/reverberate_data_dir.py (docs/kaldi-reverberation.md) and SNR lists. Choices
+// come from a per-recording tsrir::Rng, SNR lists are walked in Kaldi's cyclic order: results are
+// statistically equivalent to Kaldi's script (not bit-identical to its MT19937 sequence) and never
+// depend on the thread count.
 #pragma once
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,26 +20,32 @@ struct SetParameters {
 };
 SetParameters parse_set_parameters(const std::string& text, const std::string& option);
 
-// Final weight of each set: given weights as given; sets without one share 1 - sum(given)
-// equally (Kaldi). Throws when the given weights exceed 1 or everything ends up zero.
+// Kaldi's smooth_probability_distribution(items, smoothing_weight, target_sum): items without a
+// probability share u = (1 - sum(given)) / #unspecified (0, with a warning, when the given ones
+// reach 1); given ones become (1 - w) p + w u; all are then scaled to sum to target_sum. With
+// every probability given, u = 0 and the smoothing only rescales (as in Kaldi). Throws when the
+// result has zero total mass (Kaldi divides by zero there).
+std::vector<double> kaldi_smoothed_probabilities(const std::vector<std::optional<double>>& given,
+                                                 double smoothing_weight, double target_sum,
+                                                 const std::string& context);
+
+// Final weight of each set: kaldi_smoothed_probabilities(weights, 0, 1).
 std::vector<double> resolve_set_weights(const std::vector<std::optional<double>>& weights,
                                         const std::string& option);
-
-// Probabilities of the items of one list, summing to 1: items with --probability keep it, the
-// others share the remaining mass equally; then smoothed towards uniform,
-// p <- (1 - w) p + w / n (Kaldi's --rir-smoothing-weight / --noise-smoothing-weight).
-std::vector<double> item_probabilities(const std::vector<std::optional<double>>& given,
-                                       double smoothing_weight, const std::string& context);
 
 // Index drawn with probability weights[i] / sum(weights); u in [0, 1).
 size_t weighted_index(const std::vector<double>& weights, double u);
 
-// An SNR specification: "lo:hi" = uniform in [lo, hi) dB; "a,b,c" = one of the values, each
-// equally likely; "x" = always x.
+// An SNR specification. Kaldi's form: "20:10:0" = a list of values, walked cyclically in an order
+// shuffled once (--foreground-snrs / --background-snrs). tsrir's extension, spelt differently so
+// that no Kaldi string changes meaning: "lo..hi" = uniform in [lo, hi) dB, drawn per noise.
 class SnrSpec {
  public:
   static SnrSpec parse(const std::string& text, const std::string& option);
-  double draw(Rng& rng) const;
+  bool is_range() const { return is_range_; }
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+  const std::vector<double>& values() const { return values_; }
   const std::string& text() const { return text_; }
 
  private:
@@ -45,6 +53,20 @@ class SnrSpec {
   bool is_range_ = false;
   double lo_ = 0, hi_ = 0;
   std::vector<double> values_;
+};
+
+// Kaldi's list_cyclic_iterator: the list shuffled once (from `shuffle_rng`), then value k of the
+// run is list[k mod n]. A range draws from the caller's per-recording generator instead.
+class SnrSequence {
+ public:
+  SnrSequence(SnrSpec spec, Rng shuffle_rng);
+  double next(Rng& per_recording_rng);
+  const SnrSpec& spec() const { return spec_; }
+
+ private:
+  SnrSpec spec_;
+  std::vector<double> order_;
+  size_t index_ = 0;
 };
 
 }  // namespace tsrir

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "augment/noise_signal.h"
 #include "augment/reverberate_stream.h"
 #include "augment/temp_file.h"
 #include "augment/wav_sink.h"
@@ -92,6 +93,15 @@ std::vector<OutputChannelSetup> setup_output_channels(
                   " channels but the impulse response has " + std::to_string(num_out) +
                   " (--multi-channel-output=true needs them equal)");
   }
+  std::vector<bool> loops;
+  for (const std::string& word : split_comma_list(config.additive_loops)) {
+    if (word != "true" && word != "false")
+      throw Error("--additive-loops: expected true or false, got '" + word + "'");
+    loops.push_back(word == "true");
+  }
+  if (!loops.empty() && loops.size() != additive_channels.size())
+    throw Error("--additive-loops has " + std::to_string(loops.size()) + " entries but --additive-signals has " +
+                std::to_string(additive_channels.size()));
   std::vector<OutputChannelSetup> setups(num_out);
   for (size_t c = 0; c < num_out; ++c) {
     if (have_rir) {
@@ -108,6 +118,7 @@ std::vector<OutputChannelSetup> setup_output_channels(
       additive[i].snr_db = snrs_db.at(i);
       additive[i].start_time_s = start_times_s.at(i);
       additive[i].offset_s = offsets_s.empty() ? 0.0 : offsets_s.at(i);
+      additive[i].loop = !loops.empty() && loops[i];
     }
   }
   return setups;
@@ -158,9 +169,39 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
   std::vector<std::vector<float>> rir;
   if (!config.impulse_response.empty())
     rir = read_channels_at_rate(config.impulse_response, fs, "--impulse-response");
+  // The nested-noise extensions: fields by position, an empty field (or none given) = plain signal.
+  const std::vector<std::string> nested_rirs = split(config.additive_impulse_responses, ',');
+  const std::vector<std::string> nested_durations = split(config.additive_durations, ',');
+  const bool any_nested = !config.additive_impulse_responses.empty() || !config.additive_durations.empty();
+  if (!config.additive_impulse_responses.empty() && nested_rirs.size() != additive_rx.size())
+    throw Error("--additive-impulse-responses has " + std::to_string(nested_rirs.size()) +
+                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
+  if (!config.additive_durations.empty() && nested_durations.size() != additive_rx.size())
+    throw Error("--additive-durations has " + std::to_string(nested_durations.size()) +
+                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
   std::vector<std::vector<std::vector<float>>> additive;
-  for (const std::string& rx : additive_rx)
-    additive.push_back(read_channels_at_rate(rx, fs, "--additive-signals"));
+  for (size_t i = 0; i < additive_rx.size(); ++i) {
+    const std::string rir_rx = any_nested && !config.additive_impulse_responses.empty() ? trim(nested_rirs[i]) : "";
+    const double duration = any_nested && !config.additive_durations.empty() && !trim(nested_durations[i]).empty()
+                                ? parse_double(trim(nested_durations[i]), "--additive-durations")
+                                : 0.0;
+    if (rir_rx.empty() && duration <= 0) {
+      additive.push_back(read_channels_at_rate(additive_rx[i], fs, "--additive-signals"));
+      continue;
+    }
+    // As the nested program: the noise at its own rate (its first channel), the RIR at that rate,
+    // 16-bit result, then resampled to the speech's rate as the outer program would.
+    AudioInfo info;
+    std::vector<std::vector<float>> noise = read_audio_channels(additive_rx[i], &info, "--additive-signals");
+    std::unique_ptr<PreparedRir> rir;
+    if (!rir_rx.empty())
+      rir = std::make_unique<PreparedRir>(
+          read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
+          info.sample_rate_hz);
+    std::vector<float> signal = nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration);
+    if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
+    additive.push_back({std::move(signal)});
+  }
   long long clipped = 0;
   size_t total = 0;
   if (!input.on_disk()) {

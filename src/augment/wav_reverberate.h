@@ -16,6 +16,11 @@ struct WavReverberateConfig {
   std::string snrs;                 // comma-separated dB
   std::string start_times;          // comma-separated s
   std::string additive_offsets;     // extension: comma-separated s (default 0 each)
+  std::string additive_loops;       // extension: comma-separated true/false per signal (default false)
+  // Extensions replacing Kaldi's nested `wav-reverberate [--impulse-response=r] [--duration=d] n -`
+  // additive signals by the same computation in this process (one process per noise less):
+  std::string additive_impulse_responses;  // comma-separated rxfilenames, empty field = none
+  std::string additive_durations;          // comma-separated s, 0 = as is
   bool multi_channel_output = false;
   int input_wave_channel = 0;
   int rir_channel = 0;

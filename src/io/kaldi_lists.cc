@@ -186,9 +186,22 @@ NoiseListEntry parse_noise_list_line(const std::string& line, const std::string&
   return e;
 }
 
+// Kaldi's reverberate_data_dir.py hands every line of a list to argparse: a "#" line is not a
+// comment there but a malformed entry that stops the script. Refused here too, with the reason.
+static void refuse_comment_lines(const std::vector<std::pair<int, std::string>>& lines, const std::string& path,
+                          const std::string& kind) {
+  for (const auto& [n, text] : lines) {
+    if (!text.empty() && text[0] == '#')
+      throw Error(path + ":" + std::to_string(n) + ": a " + kind +
+                  " list has no comment lines (Kaldi's reverberate_data_dir.py fails on this line too); "
+                  "remove the line");
+  }
+}
+
 std::vector<RirListEntry> read_rir_list(const std::string& path) {
   auto lines = read_lines(path);
   if (lines.empty()) throw Error(path + ": empty RIR list");
+  refuse_comment_lines(lines, path, "RIR");
   const bool option_form = looks_like_option_list(lines);
   std::vector<RirListEntry> out;
   std::map<std::string, int> seen;
@@ -216,7 +229,9 @@ std::vector<RirListEntry> read_rir_list(const std::string& path) {
 
 std::vector<NoiseListEntry> read_noise_list(const std::string& path) {
   auto lines = read_lines(path);
-  if (lines.empty()) throw Error(path + ": empty noise list");
+  // An empty noise list is no error: Kaldi's script then adds no noise from it.
+  if (lines.empty()) return {};
+  refuse_comment_lines(lines, path, "noise");
   const bool option_form = looks_like_option_list(lines);
   std::vector<NoiseListEntry> out;
   std::map<std::string, int> seen;

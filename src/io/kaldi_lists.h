@@ -33,7 +33,9 @@ std::vector<std::string> shlex_split(const std::string& line, const std::string&
 RirListEntry parse_rir_list_line(const std::string& line, const std::string& context);
 NoiseListEntry parse_noise_list_line(const std::string& line, const std::string& context);
 
-// Whole files: blank lines skipped; duplicate ids are errors with file:line. A file whose
+// Whole files: blank lines skipped; duplicate ids within one file are errors with file:line; a line
+// starting with "#" is an error (Kaldi's script has no comments in these lists and fails on it); an
+// empty noise list gives no entries (Kaldi proceeds without its noises), an empty RIR list is an error. A file whose
 // first non-blank line does not start with "--" is read as an scp (<id> <rxfilename>): RIRs get
 // room id = rir id, noises become point-source background noises.
 std::vector<RirListEntry> read_rir_list(const std::string& path);

@@ -5,6 +5,7 @@
 // weights. Invariants: the RIR and noise probabilities are each a distribution (in [0,1], sum 1),
 // and every noise usable with a room is point-source or linked to that room.
 #include <cmath>
+#include <map>
 
 #include "augment/augment_sources.h"
 #include "fuzz_common.h"
@@ -33,21 +34,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       total += r.probability;
     }
     FUZZ_CHECK(!s.rirs.empty() && std::fabs(total - 1) < 1e-9, "RIR probabilities sum to " + std::to_string(total));
-    if (!s.noises.empty()) {
-      total = 0;
-      for (const auto& n : s.noises) {
-        FUZZ_CHECK(n.probability >= 0 && n.probability <= 1 + 1e-12, n.id);
-        total += n.probability;
-      }
-      FUZZ_CHECK(std::fabs(total - 1) < 1e-9, "noise probabilities sum to " + std::to_string(total));
+    // Each noise type draws from its own group: all point sources; the isotropic noises of one room.
+    std::map<std::string, double> group_total;
+    for (const auto& n : s.noises) {
+      FUZZ_CHECK(n.probability >= 0 && n.probability <= 1 + 1e-12, n.id);
+      group_total[n.noise_type == "isotropic" ? "room " + n.room_linkage : n.noise_type] += n.probability;
     }
-    for (const auto& r : s.rirs) {
-      for (size_t i : s.noises_for_room(r.room_id)) {
-        FUZZ_CHECK(i < s.noises.size(), "noise index out of range");
-        const auto& n = s.noises[i];
-        FUZZ_CHECK(n.noise_type == "point-source" || n.room_linkage == r.room_id, n.id + " used in room " + r.room_id);
-      }
-    }
+    for (const auto& [group, sum] : group_total)
+      FUZZ_CHECK(std::fabs(sum - 1) < 1e-9, group + ": noise probabilities sum to " + std::to_string(sum));
+    for (const auto& [room, indices] : s.rirs_by_room)
+      for (size_t i : indices) FUZZ_CHECK(i < s.rirs.size() && s.rirs[i].room_id == room, "room index");
   });
   return 0;
 }

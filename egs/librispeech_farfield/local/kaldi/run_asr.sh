@@ -54,6 +54,11 @@ ln -sfn "$KALDI_ROOT/egs/wsj/s5/utils" utils
 ln -sfn "$KALDI_ROOT/egs/librispeech/s5/local" local
 mkdir -p conf data/local
 cp "$recipe"/conf/mfcc.conf "$recipe"/conf/mfcc_hires.conf "$recipe"/conf/online_cmvn.conf conf/
+# queue.pl and slurm.pl read conf/queue.conf / conf/slurm.conf relative to the directory they start
+# from (this one): without the copy a cluster configuration would be silently ignored here.
+for f in queue.conf slurm.conf; do
+  if [ -f "$recipe/conf/$f" ]; then cp "$recipe/conf/$f" conf/; else rm -f "conf/$f"; fi
+done
 cat >path.sh <<EOF
 export KALDI_ROOT=$KALDI_ROOT
 . $recipe/path.sh

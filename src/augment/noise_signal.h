@@ -1,0 +1,28 @@
+// The signal of one planned noise (noise_type.h) as the wav.scp pipe makes it, for the paths
+// that reverberate in memory or in passes (--write-wavs): Kaldi's nested
+// `wav-reverberate [--impulse-response=<rir>] [--duration=<s>] <noise> -` run in memory with
+// wav-reverberate's defaults, then rounded to 16 bits as the pipe between the two programs does.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "augment/noise_type.h"
+#include "augment/reverberate.h"
+
+namespace tsrir {
+
+// `noise` and `rir` (null = none) are at `sample_rate_hz`. Equal, sample for sample, to what the
+// pipe adds when noise, RIR and speech share one sample rate (otherwise the pipe resamples after
+// the nested step and the results differ by the resampler's rounding).
+// Kaldi's nested `wav-reverberate [--impulse-response=<rir>] [--duration=<s>] <noise> -` in
+// process: `noise` convolved with `rir` (null = none) with wav-reverberate's defaults (shifted,
+// normalised), repeated or cut to `duration_s` (0 = as is), rounded to 16 bits as the pipe between
+// the two programs does. Used by wav-reverberate's --additive-impulse-responses/--additive-durations
+// and by reverberate-data's materialised path, so both equal the nested pipe.
+std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
+                                       double duration_s);
+
+AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr<const std::vector<float>> noise,
+                                    const PreparedRir* rir, double sample_rate_hz);
+
+}  // namespace tsrir

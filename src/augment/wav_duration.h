@@ -1,0 +1,45 @@
+// wav-to-duration: Kaldi's featbin/wav-to-duration contract (what utils/data/get_reco2dur.sh and
+// reverberate_data_dir.py call): durations of the recordings of a wav.scp written as a Kaldi float
+// archive, text ("ark,t:") or binary ("ark:").
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tsrir {
+
+struct KaldiSpecifier {
+  std::string type;                 // "scp" | "ark"
+  std::vector<std::string> flags;   // e.g. "t", "p", "s", "cs"
+  std::string target;               // file, "-" or "... |" / "| ..."
+  bool has(const std::string& flag) const;
+};
+// "scp,p:wav.scp", "ark,t:-": throws Error naming the specifier when malformed.
+KaldiSpecifier parse_kaldi_specifier(const std::string& text, const std::string& what);
+
+struct RecordingDuration {
+  std::string key;
+  float duration_s = 0.0f;   // samples / rate, in single precision as Kaldi's BaseFloat
+};
+
+// Duration from the start of a WAV stream when its header states the data size (as Kaldi's
+// WaveInfoHolder does); nullopt for a streamed header (size 0 or 0xFFFFFFFF), another format, or
+// too few bytes. `bytes` = the first bytes of the stream (the header fits in 64 KB).
+std::optional<double> wav_header_duration_s(const std::vector<char>& bytes);
+
+// The duration of an rxfilename: a file from its header (libsndfile: any format); a pipe or "-"
+// from its WAV header when that states the size (the command is then stopped, as Kaldi does),
+// else by reading it to the end. `read_entire_file`: always decode to the end.
+double rx_duration_s(const std::string& rx, bool read_entire_file, const std::string& where);
+
+// Reads the scp (a wav.scp; "scp:" rspecifier only, as Kaldi's WaveHolder tables through scp).
+// Files: from the header (as Kaldi's WaveInfoHolder); pipes and "-": the whole stream is read.
+// With `read_entire_file` every recording is decoded completely. Errors name the scp line.
+std::vector<RecordingDuration> wav_durations(const std::string& rspecifier, bool read_entire_file);
+
+// Kaldi's BaseFloatWriter output: text "key 1.234 \n" (precision 7, Kaldi's InitKaldiOutputStream),
+// binary "key \0B\4<float32>". Written to the wspecifier's file (atomically), stdout or a pipe.
+std::string format_duration_archive(const std::vector<RecordingDuration>& durations, bool text);
+void write_duration_archive(const std::string& wspecifier, const std::vector<RecordingDuration>& durations);
+
+}  // namespace tsrir
