@@ -74,6 +74,26 @@ void split_ids(const std::vector<sim::RoomSpec>& rooms, std::vector<size_t>* fit
   std::sort(eval->begin(), eval->end());
 }
 
+// The observations of the RIRs `idx` (in that order).
+SetObservations subset(const SetObservations& all, const std::vector<size_t>& idx) {
+  SetObservations s;
+  s.room_modes_ruled_out = all.room_modes_ruled_out;
+  for (size_t i : idx) {
+    s.rooms.push_back(all.rooms[i]);
+    s.measured.push_back(all.measured[i]);
+    s.simulated.push_back(all.simulated[i]);
+    s.meas.push_back(all.meas[i]);
+    s.sim_a.push_back(all.sim_a[i]);
+    s.sim_b.push_back(all.sim_b[i]);
+    s.mode_freqs_hz.push_back(all.mode_freqs_hz[i]);
+    s.schroeder_hz.push_back(all.schroeder_hz[i]);
+    s.t60_low_s.push_back(all.t60_low_s[i]);
+    s.echo_density_meas_a.push_back(all.echo_density_meas_a[i]);
+    s.echo_density_b_a.push_back(all.echo_density_b_a[i]);
+  }
+  return s;
+}
+
 Finding* finding(Diagnosis* d, const std::string& effect) {
   for (Finding& f : d->findings) {
     if (f.effect == effect) return &f;
@@ -193,18 +213,21 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
   d.sample_rate_hz = options.sample_rate_hz;
   d.num_rirs = n;
   d.baseline_model = options.baseline_model;
-  d.findings = detect_effects(obs, &d.bands);
-  recheck_modes_after_band_refit(obs, options, &d);
+  // Decide on one half, judge on the other: detection and fitting see the fit RIRs only; the
+  // gain table is computed on the held-out RIRs.
+  std::vector<size_t> fit, eval;
+  split_ids(obs.rooms, &fit, &eval);
+  for (size_t i : fit) d.fit_ids.push_back(obs.rooms[i].rir_id);
+  for (size_t i : eval) d.eval_ids.push_back(obs.rooms[i].rir_id);
+  SetObservations fit_obs = subset(obs, fit);
+  d.findings = detect_effects(fit_obs, &d.bands);
+  recheck_modes_after_band_refit(fit_obs, options, &d);
+  if (fit_obs.room_modes_ruled_out) obs.room_modes_ruled_out = true;
   for (size_t i = 0; i < n; ++i) {
     d.flight_ms.push_back(1e3 * obs.rooms[i].source_mic_distance_m() / obs.rooms[i].speed_of_sound_m_s);
     d.onset_meas_ms.push_back(1e3 * obs.meas[i].onset_s);
     d.onset_sim_ms.push_back(1e3 * obs.sim_a[i].onset_s);
   }
-
-  std::vector<size_t> fit, eval;
-  split_ids(obs.rooms, &fit, &eval);
-  for (size_t i : fit) d.fit_ids.push_back(obs.rooms[i].rir_id);
-  for (size_t i : eval) d.eval_ids.push_back(obs.rooms[i].rir_id);
   log_info("fitting the extensions of the detected effects on " + std::to_string(fit.size()) + " RIRs");
   d.extended_model_by_room = fit_extensions(obs, fit, options, &d.findings);
 
@@ -244,6 +267,9 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
     g.extended = mean_of(ee);
     g.gain = mean_of(diff);
     g.gain_se = diff.size() >= 2 ? stddev_of(diff) / std::sqrt(static_cast<double>(diff.size())) : NAN;
+    // Paired t-test of the per-RIR error reduction (two-sided); a gain counts at p < kGainAlpha.
+    g.t = g.gain_se > 0.0 ? g.gain / g.gain_se : (g.gain == 0.0 ? 0.0 : std::copysign(INFINITY, g.gain));
+    g.p = diff.size() >= 2 && std::isfinite(g.t) ? student_t_two_sided_p(g.t, diff.size() - 1.0) : (g.gain != 0.0 && diff.size() >= 2 ? 0.0 : 1.0);
     d.gains.push_back(g);
   }
 
@@ -312,7 +338,8 @@ void write_findings_json(const Diagnosis& d, std::ostream& out) {
   for (const MetricGain& g : d.gains) {
     w.key(g.name).begin_object();
     w.field("baseline", g.baseline).field("extended", g.extended).field("unit", g.unit);
-    w.field("gain", g.gain).field("gain_standard_error", g.gain_se).field("n", g.n);
+    w.field("gain", g.gain).field("gain_standard_error", g.gain_se).field("t", g.t).field("p", g.p);
+    w.field("significant", g.gain > 0.0 && g.p < kGainAlpha).field("n", g.n);
     w.end_object();
   }
   w.end_object();
@@ -346,10 +373,11 @@ std::string diagnosis_summary(const Diagnosis& d) {
     }
     s << "\n";
   }
-  s << "  gain on held-out RIRs (mean absolute error, baseline -> extended, gain +- s.e.):\n";
+  s << "  gain on held-out RIRs (mean absolute error, baseline -> extended, gain +- s.e., paired t, p):\n";
   for (const MetricGain& g : d.gains) {
     s << "    " << g.name << ": " << num(g.baseline) << " -> " << num(g.extended) << " " << g.unit << " (" << num(g.gain)
-      << " +- " << num(g.gain_se, 2) << ")\n";
+      << " +- " << num(g.gain_se, 2) << ", t = " << num(g.t, 3) << ", p = " << num(g.p, 2)
+      << (g.gain > 0.0 && g.p < kGainAlpha ? ", gain" : "") << ")\n";
   }
   return s.str();
 }

@@ -21,6 +21,9 @@ struct DiagnoseOptions {
   size_t max_scattering_fit_rirs = 24;  // RIRs rendered per scattering value when refitting it
 };
 
+// A held-out gain counts when the paired test gives p below this (and the gain is positive).
+constexpr double kGainAlpha = 0.01;
+
 struct MetricGain {
   std::string name;
   std::string unit;
@@ -28,6 +31,8 @@ struct MetricGain {
   double extended = 0.0;
   double gain = 0.0;         // baseline - extended
   double gain_se = 0.0;      // standard error of the paired per-RIR difference
+  double t = 0.0;            // paired t statistic (gain / gain_se)
+  double p = 1.0;            // two-sided p of t at n - 1 degrees of freedom
   size_t n = 0;
 };
 

@@ -7,8 +7,8 @@
 // applied to e must not fire (reported as null_statistic; if it fires, the statistic is not
 // trusted and the effect is not reported as detected). Thresholds (two conditions each: a test
 // that the set's differences are not chance at p < kAlpha, Bonferroni-corrected over bands, AND
-// an effect size a listener/metric would notice):
-//   time_offset          |onset_meas - onset_sim| > max(0.3 ms, 5 MAD of the null) in more RIRs
+// an effect size a listener/metric would notice; all decided on the fit half of the set only):
+//   time_offset          |onset_meas - onset_sim| > max(0.6 ms, 5 MAD of the null) in more RIRs
 //                        than a 5 % per-RIR false-alarm rate explains (binomial p < kAlpha), and
 //                        the median |difference| above the same threshold.
 //   noise_floor          decay over the last 30 % of the file (level at 70-80 % minus 90-100 %,
@@ -19,13 +19,16 @@
 //                        some band |mean| > 1 dB at p < kAlpha / bands, and the tail's shape
 //                        agrees (correlation of the mean shapes > 0.6).
 //   room_modes           mode prominence (spectrum maxima within the modal half-bandwidth of the
-//                        stated room's predicted modes minus maxima at midpoints between modes):
-//                        mean difference > 1 dB, p < kAlpha. When band_absorption is also
+//                        stated room's predicted modes minus maxima at midpoints between modes,
+//                        each relative to the local mean level over +-10 Hz so that a smooth trend
+//                        such as a loudspeaker's low-frequency roll-off cancels): mean difference
+//                        > 0.5 dB, p < kAlpha. When band_absorption is also
 //                        detected, room_modes is decided again against band-refitted
 //                        simulations (lower absorption makes the image sources more modal).
 //   air_absorption       per-room, per-band mean log decay-rate ratios fitted by one ISO 9613-1
 //                        band decay increase for all rooms (humidity and scale fitted): the fit
-//                        must remove > 90 % of the chi-square, improve it by > 20, leave no
+//                        must remove > 90 % of the chi-square, improve it by > 20 over no change
+//                        AND over one uniform rate factor for all bands (a room size error), leave no
 //                        room's band significant, and predict > 5 % faster decay in the top band.
 //   band_absorption      some room's band log decay-rate ratio (after the air fit, when air is
 //                        detected) beyond ln(1.08) at p < kAlpha / (rooms x bands). Bands below

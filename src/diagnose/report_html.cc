@@ -107,17 +107,18 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
       out << html_escape(room) << ": <code>" << html_escape(spec) << "</code><br>";
     }
   }
-  out << "</p><table><tr><th>metric</th><th>baseline</th><th>extended</th><th>gain &plusmn; s.e.</th><th>n</th></tr>\n";
+  out << "</p><table><tr><th>metric</th><th>baseline</th><th>extended</th><th>gain &plusmn; s.e.</th><th>paired t</th><th>p</th><th>n</th></tr>\n";
   for (const MetricGain& g : d.gains) {
-    const bool better = g.gain > 2.0 * g.gain_se;
-    const bool worse = g.gain < -2.0 * g.gain_se;
+    const bool better = g.gain > 0.0 && g.p < kGainAlpha;
+    const bool worse = g.gain < 0.0 && g.p < kGainAlpha;
     out << "<tr><td>" << g.name << "</td><td>" << num(g.baseline) << " " << g.unit << "</td><td>" << num(g.extended) << " "
         << g.unit << "</td><td style='color:" << (better ? "#070" : worse ? "#b00" : "#555") << "'>" << num(g.gain)
-        << " &plusmn; " << num(g.gain_se, 2) << "</td><td>" << g.n << "</td></tr>\n";
+        << " &plusmn; " << num(g.gain_se, 2) << "</td><td>" << num(g.t, 3) << "</td><td>" << num(g.p, 2) << "</td><td>"
+        << g.n << "</td></tr>\n";
   }
   out << "</table>\n";
 
-  out << "<h2>Per-band departures (all RIRs)</h2><div class='plots'>\n";
+  out << "<h2>Per-band departures (fit RIRs)</h2><div class='plots'>\n";
   {
     PlotSpec p;
     p.title = "Decay rate, measured vs simulated (T30)";

@@ -220,9 +220,13 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
     f.lf_spectrum_db[k] = db(c ? s / c : 0.0);
   }
   // Mode prominence: the spectrum's maximum within the modal half-bandwidth of each predicted
-  // mode, minus the same maximum around the midpoints of wide gaps between predicted modes. Both
-  // are window maxima of the same spectrum, so for a response without modes at those frequencies
-  // (any decay time, any colouration smoother than the mode spacing) the difference is zero.
+  // mode, minus the same maximum around the midpoints of wide gaps between predicted modes, each
+  // taken relative to the local spectral level (mean dB over +-kTrendHz around it). Both are
+  // window maxima of the same spectrum, so for a response without modes at those frequencies the
+  // difference is zero; the local reference removes any smooth trend (a loudspeaker's
+  // low-frequency roll-off: wide gaps lie at the lowest frequencies, where a high-pass lowers the
+  // spectrum, so without it every roll-off read as modes).
+  constexpr double kTrendHz = 10.0;
   const double tol_hz = std::max(0.75, 1.1 / std::max(t60_low_s, 0.1));
   auto window_max = [&](double centre) {
     double best = -300.0;
@@ -236,13 +240,23 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
     if (fm >= options.lf_min_hz && fm <= schroeder_hz) in_range.push_back(fm);
   }
   std::sort(in_range.begin(), in_range.end());
+  auto local_level = [&](double centre) {
+    double sum = 0.0;
+    int count = 0;
+    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - kTrendHz) / df)); k * df <= centre + kTrendHz && k < p.size(); ++k) {
+      sum += db(p[k]);
+      ++count;
+    }
+    return count ? sum / count : 0.0;
+  };
   double peak_sum = 0.0, gap_sum = 0.0;
   int peak_n = 0, gap_n = 0;
   for (size_t m = 0; m < in_range.size(); ++m) {
-    peak_sum += window_max(in_range[m]);
+    peak_sum += window_max(in_range[m]) - local_level(in_range[m]);
     ++peak_n;
     if (m + 1 < in_range.size() && in_range[m + 1] - in_range[m] > 2.5 * tol_hz) {
-      gap_sum += window_max(0.5 * (in_range[m] + in_range[m + 1]));
+      const double mid = 0.5 * (in_range[m] + in_range[m + 1]);
+      gap_sum += window_max(mid) - local_level(mid);
       ++gap_n;
     }
   }

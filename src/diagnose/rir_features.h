@@ -40,7 +40,7 @@ struct RirFeatures {
   double late_decay_db = 0.0;    // decay between 70-80 % and 90-100 % of the file (median, 500..4k)
   double tail_level_db = 0.0;    // energy of the last 10 % re the total energy, dB
   double echo_density = 0.0;     // mean normalised echo density (1-4 kHz) in the early window
-  double mode_prominence_db = 0.0;  // spectrum at predicted modes minus between modes (window maxima)
+  double mode_prominence_db = 0.0;  // spectrum at predicted modes minus between modes (window maxima re local level)
   std::vector<double> lf_spectrum_db;  // 1 Hz grid from 0 to lf_max_hz, 3 Hz power smoothing
   double lf_energy_ratio = 0.0;  // energy below the Schroeder frequency / total energy
 };

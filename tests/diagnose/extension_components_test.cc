@@ -6,6 +6,7 @@
 
 #include "dsp/fft.h"
 #include "hidden_effects.h"
+#include "measured_rir_generator.h"
 #include "sim/air_absorption.h"
 #include "sim/extension_components.h"
 #include "sim/model.h"

@@ -1,15 +1,20 @@
-// Test-side generation of "measured" RIR sets: the baseline simulator renders the stated rooms
-// (the truth model the real world departs from), then one or more effects of rir-diagnose's
-// catalog are hidden with formulations written here, independently of the extension components
-// under test (different maths, different code):
-//   room_modes          damped sinusoids at shoebox mode frequencies computed here, amplitudes from
-//                       cos mode shapes with random jitter, decays 1.5-2.5x the stated low-band T60
-//   air_absorption      ISO 9613-1 (own implementation) applied per STFT bin and frame time
-//   band_absorption     rendering with per-band absorption the room list does not state
-//   transducer_response a random cascade of RBJ peaking/shelving biquads (direct form)
+// Test-side "measured" RIR sets for rir-diagnose: every RIR comes from the independent generator
+// (measured_rir_generator.h: frequency-domain image sum, STFT-shaped diffuse noise with a
+// scattered-energy rain, its own Eyring and ISO 9613-1), never from src/sim. Nothing hidden, the
+// "measured" set still differs from the diagnosis' baseline in every detail of its formulation
+// (image cut-off, tail synthesis, level calibration): that is the null case. Effects of the catalog
+// are hidden as physical properties of the true room or the measurement chain:
+//   room_modes          extra damped modes of the TRUE room (size within +-1.5 % of the stated
+//                       one), random phases, decays 1.5-2.5x the room's low-band T60
+//   air_absorption      ISO 9613-1 attenuation at every frequency bin over every image's path and
+//                       added to the diffuse field's decay rate per bin
+//   band_absorption     the true absorption is the stated one times a factor per band
+//   transducer_response a random cascade of RBJ peaking/shelving biquads
 //   noise_floor         white or pink Gaussian noise (FFT-shaped) at a random peak-to-noise ratio
-//   diffuse_scattering  rendering with scattering the room list does not state
-//   time_offset         a random latency (integer-sample shift)
+//   diffuse_scattering  the true scattering coefficient differs from the stated one
+//   time_offset         a constant system latency (fractional delay of every arrival)
+// Confounds (HiddenOptions) change the truth without hiding a catalog effect: a loudspeaker's
+// low-frequency roll-off, positions and room size that differ from the stated ones.
 #pragma once
 #include <cstdint>
 #include <map>
@@ -28,16 +33,27 @@ struct HiddenSet {
   std::map<std::string, double> truth;     // hidden parameters, for the parameter checks
 };
 
+struct HiddenOptions {
+  double highpass_hz = 0.0;        // > 0: a 2nd-order Butterworth high-pass (loudspeaker roll-off)
+  double position_error_m = 0.0;   // true source/mic coordinates = stated + U(-e, e)
+  double size_error = 0.0;         // true room size = stated * (1 + e), e signed (one per set)
+  // > 0: every RIR is pre-aligned as many published sets are: its direct sound moved to this
+  // time (ms), whatever the distance (the onset no longer follows the time of flight).
+  double pre_align_ms = 0.0;
+  // Fixed hidden parameters instead of drawn ones (names as in HiddenSet::truth, e.g.
+  // "scattering", "peak_to_noise_db", "latency_ms", "mode_gain_db", "absorption_factor_3",
+  // "humidity_percent", "temperature_c", "transducer_scale" (multiplies the biquad gains)).
+  std::map<std::string, double> fixed;
+};
+
 // `count` set-ups in one mid-size room (6.2 x 4.8 x 3.0 m, stated absorption rising with
 // frequency), positions drawn with `seed`.
 std::vector<sim::RoomSpec> make_test_rooms(size_t count, uint64_t seed);
 
-// Renders the stated rooms and hides `effects` (ids of the catalog) with parameters drawn from
-// `seed`.
+// Generates the "measured" RIRs of the stated rooms with `effects` (ids of the catalog) hidden,
+// parameters drawn from `seed` unless fixed in `options`.
 HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::set<std::string>& effects,
-                          uint64_t seed, double sample_rate_hz = 16000.0, double length_s = 1.0);
-
-// ISO 9613-1 attenuation (dB/m), written for the tests.
-double test_air_attenuation_db_per_m(double f_hz, double temperature_c, double humidity_percent);
+                          uint64_t seed, double sample_rate_hz = 16000.0, double length_s = 1.0,
+                          const HiddenOptions& options = {});
 
 }  // namespace tsrir::testing

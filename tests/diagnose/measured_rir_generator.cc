@@ -1,0 +1,311 @@
+#include "measured_rir_generator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "dsp/fft.h"
+
+namespace tsrir::testing {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMixingTimeS = 0.070;    // centre of the image -> statistical crossfade
+constexpr double kCrossfadeS = 0.020;     // its full width
+
+// Weight of the statistical field at time t (0 before the crossfade, 1 after).
+double late_weight(double t) {
+  const double a = (t - (kMixingTimeS - kCrossfadeS / 2)) / kCrossfadeS;
+  if (a <= 0.0) return 0.0;
+  if (a >= 1.0) return 1.0;
+  return 0.5 - 0.5 * std::cos(kPi * a);
+}
+
+// Linear interpolation weights of frequency f between octave centres in log frequency (flat
+// outside the first and last centre).
+void octave_interp(double f, int* lo, double* w) {
+  const double x = std::log2(std::max(f, 1e-3) / kOctaveCentersHz[0]);
+  if (x <= 0.0) { *lo = 0; *w = 0.0; return; }
+  if (x >= kNumOctaveBands - 1) { *lo = kNumOctaveBands - 2; *w = 1.0; return; }
+  *lo = static_cast<int>(std::floor(x));
+  *w = x - *lo;
+}
+
+double volume(const TrueRoom& r) { return r.size_m[0] * r.size_m[1] * r.size_m[2]; }
+double area(const TrueRoom& r, int s) {
+  const int axis = s / 2;  // x walls, y walls, floor/ceiling
+  const double a = r.size_m[(axis + 1) % 3], b = r.size_m[(axis + 2) % 3];
+  return a * b;
+}
+
+// Image coordinate and wall hits of image k on one axis (length L, source coordinate s).
+struct AxisImage { double coord; int near_hits, far_hits; };
+AxisImage axis_image(int k, double L, double s) {
+  AxisImage im;
+  im.coord = k * L + ((k % 2 == 0) ? s : L - s);
+  const int m = std::abs(k);
+  if (k >= 0) { im.far_hits = (m + 1) / 2; im.near_hits = m / 2; }
+  else { im.near_hits = (m + 1) / 2; im.far_hits = m / 2; }
+  return im;
+}
+
+}  // namespace
+
+double test_air_attenuation_db_per_m(double f, double temperature_c, double humidity) {
+  // ISO 9613-1:1993, equations (3)-(5) and (B.1)-(B.3), at the reference pressure.
+  const double T = temperature_c + 273.15, Tr = 293.15, T01 = 273.16;
+  const double csat = -6.8346 * std::pow(T01 / T, 1.261) + 4.6151;
+  const double h = humidity * std::pow(10.0, csat);
+  const double frO = 24.0 + 4.04e4 * h * (0.02 + h) / (0.391 + h);
+  const double frN = std::pow(T / Tr, -0.5) * (9.0 + 280.0 * h * std::exp(-4.170 * (std::pow(T / Tr, -1.0 / 3.0) - 1.0)));
+  const double oxygen = 0.01275 * std::exp(-2239.1 / T) / (frO + f * f / frO);
+  const double nitrogen = 0.1068 * std::exp(-3352.0 / T) / (frN + f * f / frN);
+  return 8.686 * f * f * (1.84e-11 * std::pow(T / Tr, 0.5) + std::pow(T / Tr, -2.5) * (oxygen + nitrogen));
+}
+
+sim::BandValues test_eyring_rate_per_s(const TrueRoom& r) {
+  double s_total = 0.0;
+  for (int s = 0; s < sim::kNumSurfaces; ++s) s_total += area(r, s);
+  sim::BandValues rate{};
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    double a = 0.0;
+    for (int s = 0; s < sim::kNumSurfaces; ++s) a += area(r, s) * r.absorption[s][b];
+    a /= s_total;
+    // Energy falls by (1 - a) at each reflection, c S / 4V reflections per second.
+    rate[b] = -std::log(1.0 - std::min(a, 0.999)) * r.speed_of_sound_m_s * s_total / (4.0 * volume(r));
+  }
+  return rate;
+}
+
+TrueRoom true_room_from(const sim::RoomSpec& stated) {
+  TrueRoom t;
+  t.size_m = stated.size_m;
+  t.source_m = stated.source_m;
+  t.mic_m = stated.mic_m;
+  t.absorption = stated.absorption;
+  t.scattering = stated.scattering;
+  t.speed_of_sound_m_s = stated.speed_of_sound_m_s;
+  return t;
+}
+
+Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng) {
+  const double c = room.speed_of_sound_m_s, V = volume(room);
+  double S = 0.0;
+  for (int s = 0; s < sim::kNumSurfaces; ++s) S += area(room, s);
+  const double mean_free_time_s = 4.0 * V / (c * S);
+  const double image_end_s = kMixingTimeS + kCrossfadeS / 2;
+
+  // ---- Early part: exact frequency-domain sum of the image sources.
+  const size_t ne = 8192 * static_cast<size_t>(std::max(1.0, std::ceil(fs / 16000.0)));
+  const size_t bins = ne / 2 + 1;
+  std::vector<int> lo_of(bins);
+  std::vector<double> w_of(bins), air_np_per_m(bins, 0.0);
+  for (size_t k = 0; k < bins; ++k) {
+    octave_interp(k * fs / ne, &lo_of[k], &w_of[k]);
+    if (room.air) {
+      air_np_per_m[k] = test_air_attenuation_db_per_m(k * fs / ne, room.air_temperature_c, room.air_humidity_percent) *
+                        std::log(10.0) / 20.0;
+    }
+  }
+  sim::BandValues band_air_np{};
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    band_air_np[b] = room.air ? test_air_attenuation_db_per_m(kOctaveCentersHz[b], room.air_temperature_c,
+                                                              room.air_humidity_percent) * std::log(10.0) / 20.0
+                              : 0.0;
+  }
+  std::vector<std::complex<double>> spec(bins, 0.0);
+  // Scattered energy rain per band on a 1 ms grid.
+  const double grid_s = 1e-3;
+  const size_t grid_n = static_cast<size_t>(std::ceil(n / fs / grid_s)) + 2;
+  std::vector<std::array<double, kNumOctaveBands>> rain(grid_n);
+  for (auto& r : rain) r.fill(0.0);
+
+  int K[3];
+  for (int a = 0; a < 3; ++a) K[a] = static_cast<int>(std::ceil(c * image_end_s / room.size_m[a])) + 1;
+  sim::BandValues log_r[sim::kNumSurfaces], log_spec{};
+  for (int s = 0; s < sim::kNumSurfaces; ++s) {
+    for (int b = 0; b < kNumOctaveBands; ++b) log_r[s][b] = 0.5 * std::log(std::max(1e-6, 1.0 - room.absorption[s][b]));
+  }
+  for (int b = 0; b < kNumOctaveBands; ++b) log_spec[b] = 0.5 * std::log(std::max(1e-9, 1.0 - room.scattering[b]));
+  std::vector<double> lg(kNumOctaveBands);
+  for (int kx = -K[0]; kx <= K[0]; ++kx) {
+    const AxisImage ix = axis_image(kx, room.size_m[0], room.source_m[0]);
+    for (int ky = -K[1]; ky <= K[1]; ++ky) {
+      const AxisImage iy = axis_image(ky, room.size_m[1], room.source_m[1]);
+      for (int kz = -K[2]; kz <= K[2]; ++kz) {
+        const AxisImage iz = axis_image(kz, room.size_m[2], room.source_m[2]);
+        const double dx = ix.coord - room.mic_m[0], dy = iy.coord - room.mic_m[1], dz = iz.coord - room.mic_m[2];
+        const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const double tau = d / c + room.latency_s;
+        if (tau >= image_end_s + room.latency_s) continue;
+        const int hits = std::abs(kx) + std::abs(ky) + std::abs(kz);
+        const double specular_weight = 1.0 - late_weight(tau - room.latency_s);
+        for (int b = 0; b < kNumOctaveBands; ++b) {
+          const double unscattered = ix.near_hits * log_r[0][b] + ix.far_hits * log_r[1][b] + iy.near_hits * log_r[2][b] +
+                                     iy.far_hits * log_r[3][b] + iz.near_hits * log_r[4][b] + iz.far_hits * log_r[5][b];
+          lg[b] = unscattered + hits * log_spec[b];
+          // The scattered share of this image's energy, air included at the band centre.
+          const double e_unscattered = std::exp(2.0 * unscattered - 2.0 * band_air_np[b] * d) / std::pow(4.0 * kPi * d, 2);
+          const double e_scattered = e_unscattered * (1.0 - std::exp(2.0 * hits * log_spec[b]));
+          if (e_scattered <= 0.0) continue;
+          // Spread over the following mean free time: density (E / T) exp(-(t - tau) / T).
+          for (size_t g = static_cast<size_t>(tau / grid_s); g < grid_n; ++g) {
+            const double t0 = std::max(tau, g * grid_s), t1 = (g + 1) * grid_s;
+            if (t1 <= t0) continue;
+            const double share = std::exp(-(t0 - tau) / mean_free_time_s) - std::exp(-(t1 - tau) / mean_free_time_s);
+            rain[g][b] += e_scattered * share;
+            if ((t1 - tau) > 8.0 * mean_free_time_s) break;
+          }
+        }
+        if (specular_weight <= 0.0) continue;
+        const double amp0 = specular_weight / (4.0 * kPi * d);
+        const std::complex<double> step = std::polar(1.0, -2.0 * kPi * tau * fs / ne);
+        std::complex<double> phasor = 1.0;
+        for (size_t k = 0; k < bins; ++k) {
+          const int lo = lo_of[k];
+          const double gain = std::exp((1.0 - w_of[k]) * lg[lo] + w_of[k] * lg[lo + 1] - air_np_per_m[k] * d);
+          spec[k] += amp0 * gain * phasor;
+          phasor *= step;
+        }
+      }
+    }
+  }
+  std::vector<std::complex<float>> specf(bins);
+  for (size_t k = 0; k < bins; ++k) specf[k] = std::complex<float>(spec[k]);
+  // The Nyquist bin of a real signal is real.
+  specf[bins - 1] = std::complex<float>(specf[bins - 1].real(), 0.0f);
+  std::vector<float> early(ne);
+  RealFft(ne).inverse(specf.data(), early.data());
+  Signal out;
+  out.sample_rate_hz = fs;
+  out.samples.assign(n, 0.0f);
+  // Keep the causal part (the sinc tails of early arrivals wrap to the buffer's end).
+  const size_t keep = std::min(n, ne * 3 / 4);
+  for (size_t i = 0; i < keep; ++i) out.samples[i] = early[i] / static_cast<float>(ne);  // unnormalised inverse
+
+  // ---- Diffuse part: noise shaped by the time-frequency energy envelope.
+  const sim::BandValues rate = test_eyring_rate_per_s(room);
+  const size_t frame = 512 * static_cast<size_t>(std::max(1.0, std::round(fs / 16000.0))), hop = frame / 4;
+  const size_t fb = frame / 2 + 1;
+  std::vector<double> f_rate(fb), f_w(fb);
+  std::vector<int> f_lo(fb);
+  for (size_t k = 0; k < fb; ++k) {
+    const double f = k * fs / frame;
+    octave_interp(f, &f_lo[k], &f_w[k]);
+    const double lr = (1.0 - f_w[k]) * std::log(rate[f_lo[k]]) + f_w[k] * std::log(rate[f_lo[k] + 1]);
+    const double air = room.air ? test_air_attenuation_db_per_m(f, room.air_temperature_c, room.air_humidity_percent) *
+                                      std::log(10.0) / 10.0 * c
+                                : 0.0;
+    f_rate[k] = std::exp(lr) + air;
+  }
+  std::vector<double> win(frame);
+  for (size_t i = 0; i < frame; ++i) win[i] = std::sqrt(0.5 - 0.5 * std::cos(2.0 * kPi * i / frame));
+  std::vector<float> padded(n + 2 * frame);
+  for (float& v : padded) v = static_cast<float>(rng.normal());
+  std::vector<double> diffuse(padded.size(), 0.0);
+  RealFft fft(frame);
+  std::vector<float> x(frame), y(frame);
+  std::vector<std::complex<float>> fx(fb);
+  const double direct_s = std::sqrt(std::pow(room.source_m[0] - room.mic_m[0], 2) + std::pow(room.source_m[1] - room.mic_m[1], 2) +
+                                    std::pow(room.source_m[2] - room.mic_m[2], 2)) / c;
+  for (size_t start = 0; start + frame <= padded.size(); start += hop) {
+    const double t_abs = (static_cast<double>(start) + frame / 2.0 - frame) / fs;  // time in the RIR
+    const double t = t_abs - room.latency_s;                                       // time since emission
+    if (t < direct_s - frame / fs) continue;
+    for (size_t i = 0; i < frame; ++i) x[i] = static_cast<float>(padded[start + i] * win[i]);
+    fft.forward(x.data(), fx.data());
+    const size_t g = static_cast<size_t>(std::clamp(t_abs / grid_s, 0.0, static_cast<double>(grid_n - 1)));
+    const double wl = late_weight(t);
+    for (size_t k = 0; k < fb; ++k) {
+      const int lo = f_lo[k];
+      const double rain_density = ((1.0 - f_w[k]) * rain[g][lo] + f_w[k] * rain[g][lo + 1]) / grid_s;
+      const double late_density = t > 0.0 ? c / (4.0 * kPi * V) * std::exp(-f_rate[k] * t) : 0.0;
+      const double density = (1.0 - wl) * rain_density + wl * late_density;   // squared samples per second
+      fx[k] *= static_cast<float>(std::sqrt(density / fs));
+    }
+    fft.inverse(fx.data(), y.data());
+    for (size_t i = 0; i < frame; ++i) diffuse[start + i] += y[i] * win[i] / (2.0 * frame);
+  }
+  // Nothing arrives before the direct sound (a 1 ms raised-cosine fade-in at its arrival).
+  const double t_direct_abs = direct_s + room.latency_s;
+  for (size_t i = 0; i < n; ++i) {
+    const double t = i / fs - t_direct_abs;
+    const double fade = t <= 0.0 ? 0.0 : (t >= 1e-3 ? 1.0 : 0.5 - 0.5 * std::cos(kPi * t / 1e-3));
+    out.samples[i] += static_cast<float>(diffuse[frame + i] * fade);
+  }
+
+  // ---- Modal part: the true room's modes below mode_max_hz, random phases.
+  if (room.mode_gain_db > -90.0) {
+    const double lx = room.size_m[0], ly = room.size_m[1], lz = room.size_m[2];
+    const double t60_low = 13.8155 / rate[1] * room.mode_decay_factor;
+    const double scale = std::pow(10.0, room.mode_gain_db / 20.0) * c * c / (V * fs);
+    for (int p = 0; p < 16; ++p) {
+      for (int q = 0; q < 16; ++q) {
+        for (int r = 0; r < 10; ++r) {
+          const double f = 0.5 * c * std::sqrt(std::pow(p / lx, 2) + std::pow(q / ly, 2) + std::pow(r / lz, 2));
+          if (f < 20.0 || f > room.mode_max_hz) continue;
+          auto shape = [&](const sim::Vec3& v) {
+            return std::cos(p * kPi * v[0] / lx) * std::cos(q * kPi * v[1] / ly) * std::cos(r * kPi * v[2] / lz);
+          };
+          const double norm = (p ? 2.0 : 1.0) * (q ? 2.0 : 1.0) * (r ? 2.0 : 1.0);
+          const double jitter = std::pow(10.0, rng.normal(0.0, 3.0) / 20.0);
+          const double amp = scale * norm * shape(room.source_m) * shape(room.mic_m) * jitter / (2.0 * kPi * f);
+          const double delta = 6.907755 / (t60_low * rng.uniform(0.85, 1.15));
+          const double phase = rng.uniform(0.0, 2.0 * kPi);
+          const size_t i0 = static_cast<size_t>(std::ceil(t_direct_abs * fs));
+          for (size_t i = i0; i < n; ++i) {
+            const double t = i / fs - t_direct_abs;
+            // A 2 ms rise (the mode builds up as energy arrives).
+            const double rise = t < 2e-3 ? 0.5 - 0.5 * std::cos(kPi * t / 2e-3) : 1.0;
+            out.samples[i] += static_cast<float>(rise * amp * std::sin(2.0 * kPi * f * t + phase) * std::exp(-delta * t));
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+TestBiquad test_peaking(double f0, double gain_db, double q, double fs) {
+  const double a = std::pow(10.0, gain_db / 40.0), w = 2.0 * kPi * f0 / fs, alpha = std::sin(w) / (2.0 * q);
+  const double a0 = 1.0 + alpha / a;
+  return {(1.0 + alpha * a) / a0, -2.0 * std::cos(w) / a0, (1.0 - alpha * a) / a0, -2.0 * std::cos(w) / a0,
+          (1.0 - alpha / a) / a0};
+}
+
+TestBiquad test_high_shelf(double f0, double gain_db, double fs) {
+  const double a = std::pow(10.0, gain_db / 40.0), w = 2.0 * kPi * f0 / fs;
+  const double alpha = std::sin(w) / 2.0 * std::sqrt(2.0), cw = std::cos(w), sa = 2.0 * std::sqrt(a) * alpha;
+  const double a0 = (a + 1) - (a - 1) * cw + sa;
+  return {a * ((a + 1) + (a - 1) * cw + sa) / a0, -2 * a * ((a - 1) + (a + 1) * cw) / a0,
+          a * ((a + 1) + (a - 1) * cw - sa) / a0, 2 * ((a - 1) - (a + 1) * cw) / a0, ((a + 1) - (a - 1) * cw - sa) / a0};
+}
+
+TestBiquad test_high_pass(double f0, double q, double fs) {
+  const double w = 2.0 * kPi * f0 / fs, alpha = std::sin(w) / (2.0 * q), cw = std::cos(w);
+  const double a0 = 1.0 + alpha;
+  return {(1.0 + cw) / 2.0 / a0, -(1.0 + cw) / a0, (1.0 + cw) / 2.0 / a0, -2.0 * cw / a0, (1.0 - alpha) / a0};
+}
+
+void apply_test_biquad(const TestBiquad& f, std::vector<float>& x) {
+  double x1 = 0, x2 = 0, y1 = 0, y2 = 0;
+  for (float& v : x) {
+    const double y = f.b0 * v + f.b1 * x1 + f.b2 * x2 - f.a1 * y1 - f.a2 * y2;
+    x2 = x1; x1 = v; y2 = y1; y1 = y;
+    v = static_cast<float>(y);
+  }
+}
+
+double test_cascade_octave_gain_db(const std::vector<TestBiquad>& chain, double fc, double fs) {
+  double e = 0.0;
+  for (int j = 0; j < 32; ++j) {
+    const double f = fc * std::pow(2.0, (j + 0.5) / 32.0 - 0.5);
+    const std::complex<double> z = std::exp(std::complex<double>(0.0, -2.0 * kPi * f / fs));
+    std::complex<double> h = 1.0;
+    for (const TestBiquad& q : chain) h *= (q.b0 + q.b1 * z + q.b2 * z * z) / (1.0 + q.a1 * z + q.a2 * z * z);
+    e += std::norm(h) / 32.0;
+  }
+  return 10.0 * std::log10(e);
+}
+
+}  // namespace tsrir::testing

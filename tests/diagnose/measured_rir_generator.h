@@ -1,0 +1,75 @@
+// An independent "measured RIR" generator for rir-diagnose's tests. It shares no code and no
+// formulation with src/sim (the diagnosis' baseline "gas" = ism + diffuse): only the data types
+// (RoomSpec, Signal) and the FFT engine are common.
+//
+//   Early part   image sources of a shoebox enumerated per axis (image k of an axis sits at
+//                k L + (k even ? s : L - s) and hits the walls |k| times), summed EXACTLY in the
+//                frequency domain (each image is H_i(f) exp(-j 2 pi f tau_i) on a 7.8 Hz grid, no
+//                fractional-delay filter, no octave filter bank): the reflection gain of an image
+//                is interpolated between octave centres in ln(gain) over log frequency, air
+//                attenuation (ISO 9613-1, own code) is applied at every frequency bin over the
+//                image's path. Images fade out over a raised-cosine crossfade around
+//                kMixingTimeS (gas switches at a transition time set by an image count, with an
+//                energy calibration; this one has none).
+//   Diffuse part Gaussian noise shaped in an STFT (sqrt-Hann, 512/128 at 16 kHz) by a
+//                time-frequency energy envelope: (a) scattered energy "rain": every image's
+//                scattered share 1 - (1 - s)^n of its energy is re-emitted as diffuse energy
+//                spread after its arrival over one mean free time (exponential kernel), and
+//                (b) from the crossfade on, the statistical diffuse field c / (4 pi V)
+//                exp(-rate(f) t) with Eyring's rate (own formula) interpolated in log frequency
+//                and the air's rate added per bin. No calibration against the image energy.
+//   Modal part   (optional) damped sinusoids at the modes of the TRUE room (whose size may differ
+//                from the stated one), random phases, cos mode shapes at the true positions.
+//   Transducers  RBJ biquads (peaking, shelving, Butterworth high-pass) in direct form I.
+//   Latency      a fractional delay of the whole response (phase ramp on the early part, and
+//                the diffuse envelope shifted).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "io/signal.h"
+#include "sim/room.h"
+#include "util/rng.h"
+
+namespace tsrir::testing {
+
+// The physical room a "measurement" was taken in (the room list may state something else).
+struct TrueRoom {
+  sim::Vec3 size_m{};
+  sim::Vec3 source_m{}, mic_m{};
+  std::array<sim::BandValues, sim::kNumSurfaces> absorption{};  // random incidence, per surface
+  sim::BandValues scattering{};
+  double speed_of_sound_m_s = 343.0;
+  bool air = false;                 // air absorption (ISO 9613-1) on or off
+  double air_temperature_c = 20.0;
+  double air_humidity_percent = 50.0;
+  double latency_s = 0.0;           // added to every arrival (a constant system latency)
+  // Extra modal energy below the Schroeder frequency (room_modes): level re the image sources'
+  // modal level and decay factor re the room's own low-band T60; gain_db < -90 = none.
+  double mode_gain_db = -100.0;
+  double mode_decay_factor = 1.0;
+  double mode_max_hz = 180.0;
+};
+
+// The stated room as the true one (nothing hidden).
+TrueRoom true_room_from(const sim::RoomSpec& stated);
+
+// Renders one RIR of num_samples at sample_rate_hz; `rng` draws the diffuse noise and mode phases.
+Signal generate_measured_rir(const TrueRoom& room, double sample_rate_hz, size_t num_samples, Rng& rng);
+
+// Test-side ISO 9613-1 attenuation, dB/m, at 101.325 kPa.
+double test_air_attenuation_db_per_m(double f_hz, double temperature_c, double humidity_percent);
+
+// Eyring energy decay rate (1/s) per octave band of a shoebox, written for the tests.
+sim::BandValues test_eyring_rate_per_s(const TrueRoom& room);
+
+// Biquad filters (RBJ audio-EQ cookbook) applied in place, direct form I.
+struct TestBiquad { double b0, b1, b2, a1, a2; };
+TestBiquad test_peaking(double f0_hz, double gain_db, double q, double fs);
+TestBiquad test_high_shelf(double f0_hz, double gain_db, double fs);
+TestBiquad test_high_pass(double f0_hz, double q, double fs);   // q = 1/sqrt(2): Butterworth
+void apply_test_biquad(const TestBiquad& f, std::vector<float>& x);
+// Power gain (dB) of a cascade averaged over the octave around centre_hz.
+double test_cascade_octave_gain_db(const std::vector<TestBiquad>& chain, double centre_hz, double fs);
+
+}  // namespace tsrir::testing
