@@ -10,17 +10,19 @@ q=${1:-}
 run() {  # name, command...
   local name=$1; shift
   echo "== $name: $*" >&2
-  { echo "\$ $*"; "$@"; } > "$here/results/$name.txt.tmp" 2>&1 && mv "$here/results/$name.txt.tmp" "$here/results/$name.txt"
+  { echo "\$ ${*//$peers_root\//}"; "$@"; } > "$here/results/$name.txt.tmp" 2>&1 && mv "$here/results/$name.txt.tmp" "$here/results/$name.txt"
 }
 if [ "$q" = quick ]; then
   run sim_speed "$here/sim_speed.sh" 50 1 1
   run metrics_speed "$here/metrics_speed.sh" 50
   run reverb_speed "$here/reverb_speed.sh" 5 10
+  run datadir_speed "$here/datadir_speed.sh" 10 10
   run band_accuracy "$here/band_accuracy.sh" 2
 else
   run sim_speed "$here/sim_speed.sh"
   run metrics_speed "$here/metrics_speed.sh"
   run reverb_speed "$here/reverb_speed.sh"
+  run datadir_speed "$here/datadir_speed.sh"
   run band_accuracy "$here/band_accuracy.sh"
 fi
 if have_rirgen; then run ism_accuracy "$PRA_PYTHON" "$here/ism_accuracy.py" "$TSRIR_BIN" "$RIR_GENERATOR" 20 100
