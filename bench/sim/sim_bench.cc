@@ -23,8 +23,7 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 constexpr double kFs = 16000.0;
-// pyroomacoustics on this machine kind (issue 4): image sources only / hybrid ISM + ray tracing.
-constexpr double kPraIsmS = 0.26, kPraHybridS = 0.064;
+// Comparisons with other simulators run the peers in the same run: bench/peers/sim_speed.sh.
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -53,7 +52,10 @@ double time_per_rir(const Model& model, const RoomSpec& room, size_t n, int reps
   return median(t);
 }
 
-// Worst relative T30 error over the 125..4000 Hz bands, mean T30 over `seeds` renders.
+// Worst relative departure of the measured T30 from the Eyring T60 the diffuse tail is shaped with,
+// 125..4000 Hz, mean T30 over `seeds` renders: a consistency check of render + measurement (the
+// tail is built from that decay rate), not accuracy; accuracy against independent references is
+// bench/peers/band_accuracy.sh and bench/peers/ism_accuracy.py.
 double worst_t30_error(const Model& model, const RoomSpec& room, size_t n, int seeds) {
   const BandValues eyring = eyring_t60_s(room);
   std::vector<double> sum(kNumOctaveBands, 0.0);
@@ -82,13 +84,12 @@ int main(int argc, char** argv) {
   const double t_ism = time_per_rir(Model::parse("ism"), ref, n1s, reps);
   const double t_diffuse = time_per_rir(Model::parse("diffuse"), ref, n1s, reps);
   const double err = worst_t30_error(gas, ref, n1s, quick ? 4 : 10);
-  std::printf("| what | ms per RIR | vs pyroomacoustics hybrid (0.064 s) | vs pra ISM (0.26 s) |\n|---|---|---|---|\n");
-  std::printf("| gas (ism+diffuse) | %.2f | %.0fx faster | %.0fx faster |\n", 1e3 * t_ref, kPraHybridS / t_ref,
-              kPraIsmS / t_ref);
-  std::printf("| ism alone (2000 images) + band sum | %.2f | | |\n", 1e3 * t_ism);
-  std::printf("| diffuse alone + band sum | %.2f | | |\n", 1e3 * t_diffuse);
-  std::printf("worst band T30 error vs Eyring (125-4000 Hz, mean of %d seeds): %.1f%%\n\n", quick ? 4 : 10,
-              100.0 * err);
+  std::printf("| what | ms per RIR |\n|---|---|\n");
+  std::printf("| gas (ism+diffuse) | %.2f |\n", 1e3 * t_ref);
+  std::printf("| ism alone (2000 images) + band sum | %.2f |\n", 1e3 * t_ism);
+  std::printf("| diffuse alone + band sum | %.2f |\n", 1e3 * t_diffuse);
+  std::printf("consistency (not accuracy): worst band T30 departure from the Eyring decay the tail is built with "
+              "(125-4000 Hz, mean of %d seeds): %.1f%%\n\n", quick ? 4 : 10, 100.0 * err);
 
   std::printf("## Threads: %d reference RIRs rendered with parallel_for (as rir-simulate does), wall time\n",
               quick ? 32 : 256);

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""Room table of the side-by-side benchmarks (rooms.txt) and the one absorption every tool gets.
+
+  rooms.py list                 -> name Lx,Ly,Lz src mic t60 alpha beta (one line per room)
+  rooms.py tsrir NAME N [scat]  -> N lines of a tsrir room list for that room (ids NAME_0001 ...)
+Absorption: Eyring inversion of the target T60 with c = 343 m/s, the same as tsrir's t60= key,
+but written out as absorption= so that pyroomacoustics and RIR-Generator get the identical value
+(beta = sqrt(1 - alpha) for RIR-Generator's pressure reflection coefficients).
+"""
+import math
+import os
+import sys
+
+C = 343.0
+
+
+def rooms():
+    here = os.path.dirname(os.path.abspath(__file__))
+    out = []
+    with open(os.path.join(here, "rooms.txt")) as f:
+        for line in f:
+            line = line.split("#")[0].strip()
+            if not line:
+                continue
+            name, dim, src, mic, t60 = line.split()
+            dim = [float(x) for x in dim.split(",")]
+            src = [float(x) for x in src.split(",")]
+            mic = [float(x) for x in mic.split(",")]
+            t60 = float(t60)
+            V = dim[0] * dim[1] * dim[2]
+            S = 2 * (dim[0] * dim[1] + dim[0] * dim[2] + dim[1] * dim[2])
+            alpha = 1.0 - math.exp(-24 * math.log(10) * V / (C * S * t60))
+            out.append(dict(name=name, dim=dim, src=src, mic=mic, t60=t60, V=V, S=S, alpha=alpha,
+                            beta=math.sqrt(1 - alpha)))
+    return out
+
+
+def by_name(name):
+    for r in rooms():
+        if r["name"] == name:
+            return r
+    sys.exit("rooms.py: no room '%s' in rooms.txt" % name)
+
+
+def sabine_t60(r, alpha=None):
+    a = r["alpha"] if alpha is None else alpha
+    return 24 * math.log(10) * r["V"] / (C * r["S"] * a)
+
+
+def eyring_t60(r, alpha=None):
+    a = r["alpha"] if alpha is None else alpha
+    return 24 * math.log(10) * r["V"] / (C * r["S"] * -math.log(1 - a))
+
+
+def fmt(v):
+    return ",".join("%g" % x for x in v)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) >= 2 and sys.argv[1] == "list":
+        for r in rooms():
+            print(r["name"], fmt(r["dim"]), fmt(r["src"]), fmt(r["mic"]), r["t60"], "%.6f" % r["alpha"],
+                  "%.6f" % r["beta"])
+    elif len(sys.argv) >= 4 and sys.argv[1] == "tsrir":
+        r = by_name(sys.argv[2])
+        scat = sys.argv[4] if len(sys.argv) > 4 else "0.1"
+        for i in range(int(sys.argv[3])):
+            print("%s_%04d room=%s src=%s mic=%s absorption=%.6f scattering=%s" %
+                  (r["name"], i + 1, fmt(r["dim"]), fmt(r["src"]), fmt(r["mic"]), r["alpha"], scat))
+    else:
+        sys.exit(__doc__)

@@ -1,0 +1,31 @@
+#!/bin/bash
+# Runs every side-by-side benchmark and accuracy comparison, writes bench/peers/results/<name>.txt,
+# then regenerates the summary at the top of bench/RESULTS.md (summary.py).
+#   bench/peers/run_all.sh [quick]      (quick: fewer repetitions, for a smoke run)
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/common.sh"
+mkdir -p "$here/results"
+q=${1:-}
+run() {  # name, command...
+  local name=$1; shift
+  echo "== $name: $*" >&2
+  { echo "\$ ${*//$peers_root\//}"; "$@"; } > "$here/results/$name.txt.tmp" 2>&1 && mv "$here/results/$name.txt.tmp" "$here/results/$name.txt"
+}
+if [ "$q" = quick ]; then
+  run sim_speed "$here/sim_speed.sh" 50 1 1
+  run metrics_speed "$here/metrics_speed.sh" 50
+  run reverb_speed "$here/reverb_speed.sh" 5 10
+  run datadir_speed "$here/datadir_speed.sh" 10 10
+  run band_accuracy "$here/band_accuracy.sh" 2
+else
+  run sim_speed "$here/sim_speed.sh"
+  run metrics_speed "$here/metrics_speed.sh"
+  run reverb_speed "$here/reverb_speed.sh"
+  run datadir_speed "$here/datadir_speed.sh"
+  run band_accuracy "$here/band_accuracy.sh"
+fi
+if have_rirgen; then run ism_accuracy "$PRA_PYTHON" "$here/ism_accuracy.py" "$TSRIR_BIN" "$RIR_GENERATOR" 20 100
+else echo "ism_accuracy: RIR-Generator absent" > "$here/results/ism_accuracy.txt"; fi
+run r3vival_t30 "$here/r3vival_t30.sh"
+"$PRA_PYTHON" "$here/summary.py"

@@ -1,0 +1,60 @@
+#!/bin/bash
+# rir-simulate vs pyroomacoustics (image sources only; hybrid ISM + ray tracing) vs RIR-Generator,
+# same rooms, same absorption, 16 kHz (issue 20). One core, then all cores (nproc).
+#   bench/peers/sim_speed.sh [N tsrir RIRs per room (200)] [pra reps (5)] [RIR-Generator reps (1)]
+# tsrir: rir-simulate end to end (process start, 1.0 s RIR, float WAV + lists written), CPU time
+#   (user+sys) / N; peers: median time of the simulation call in their own process (imports and
+#   file writing excluded), so the comparison leans in the peers' favour.
+# "x" columns = peer time / tsrir time (how many times faster tsrir is).
+# All cores: tsrir --num-threads=nproc over N RIRs (wall / N); peers: nproc copies run at once,
+#   wall per RIR / nproc (neither peer parallelises one RIR over cores here: pra num_threads=1).
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+n=${1:-200}; pra_reps=${2:-5}; rg_reps=${3:-1}
+need_tsrir rir-simulate
+P=$(nproc)
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+machine_line
+echo
+echo "## Simulator time per RIR, 16 kHz (CPU s on one core; wall s per RIR with $P cores)"
+echo "| room | tsrir gas (ism+diffuse), 1.0 s | tsrir ism only, 1.0 s | pra ISM | x | pra hybrid | x | RIR-Generator 1.0 s, all images | x |"
+echo "|---|---|---|---|---|---|---|---|---|"
+pra_field() { sed -n "s/.*$1=\([0-9.]*\).*/\1/p"; }
+for room in $("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'); do
+  read -r _ dim src mic t60 alpha beta < <("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk -v r="$room" '$1 == r')
+  "$PRA_PYTHON" "$peers_dir/rooms.py" tsrir "$room" "$n" > "$tmp/$room.txt"
+  for mode in 1 all; do
+    t=1; [ "$mode" = all ] && t=$P
+    rm -rf "$tmp/o"; read -r w c < <(time_cmd "$TSRIR_BIN/rir-simulate" --length=1.0 --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
+    rm -rf "$tmp/o"; read -r wi ci < <(time_cmd "$TSRIR_BIN/rir-simulate" --model=ism --length=1.0 --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
+    if [ "$mode" = 1 ]; then ours=$(awk -v c="$c" -v n="$n" 'BEGIN{printf "%.5f", c/n}'); oursi=$(awk -v c="$ci" -v n="$n" 'BEGIN{printf "%.5f", c/n}')
+    else ours=$(awk -v c="$w" -v n="$n" 'BEGIN{printf "%.5f", c/n}'); oursi=$(awk -v c="$wi" -v n="$n" 'BEGIN{printf "%.5f", c/n}'); fi
+    cols=()
+    for pm in ism hybrid; do
+      if have_pra; then
+        if [ "$mode" = 1 ]; then
+          v=$(pra_py "$peers_dir/pra_sim.py" "$room" $pm "$pra_reps" 1 | pra_field cpu_s_per_rir)
+        else
+          for k in $(seq $P); do pra_py "$peers_dir/pra_sim.py" "$room" $pm "$pra_reps" 1 > "$tmp/pra$k" & done; wait
+          v=$(cat "$tmp"/pra* | pra_field wall_s_per_rir | awk -v p=$P '{s+=$1} END {printf "%.5f", s/NR/p}')
+        fi
+        cols+=("$v" "$(ratio "$ours" "$v")")
+      else cols+=(absent -); fi
+    done
+    if have_rirgen; then
+      args=(--room=$dim --src=$src --mic=$mic --beta=$beta --nsamples=16000 --order=-1 --repeat=$rg_reps -)
+      if [ "$mode" = 1 ]; then v=$("$RIR_GENERATOR" "${args[@]}" | pra_field cpu_s_per_rir)
+      else
+        for k in $(seq $P); do "$RIR_GENERATOR" "${args[@]}" > "$tmp/rg$k" & done; wait
+        v=$(cat "$tmp"/rg* | pra_field wall_s_per_rir | awk -v p=$P '{s+=$1} END {printf "%.5f", s/NR/p}')
+      fi
+      cols+=("$v" "$(ratio "$oursi" "$v")")
+    else cols+=(absent -); fi
+    rm -f "$tmp"/pra* "$tmp"/rg*
+    label="$room (T60 $t60 s, alpha $alpha), $( [ "$mode" = 1 ] && echo "1 core CPU s" || echo "$P cores wall s")"
+    echo "| $label | $ours | $oursi | ${cols[0]} | ${cols[1]} | ${cols[2]} | ${cols[3]} | ${cols[4]} | ${cols[5]} |"
+  done
+done
+echo
+echo "x: pra columns divide by tsrir gas; RIR-Generator (image sources only) divides by tsrir ism only."
+echo "Load after the run: $(cut -d' ' -f1-3 /proc/loadavg)"
