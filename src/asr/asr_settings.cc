@@ -10,7 +10,7 @@
 namespace tsrir {
 namespace {
 
-std::string num(double v) { return format_double(v, 17); }
+std::string num(double v) { return format_double(v, 12); }
 
 const std::string& get(const AsrSettings& s, const std::string& key, const std::string& where) {
   auto it = s.find(key);

@@ -102,9 +102,9 @@ TEST(AsrCli, ResumeContinuesExactly) {
   ASSERT_EQ(run(base + d + "/straight --epochs=3", d).status, 0);
   ASSERT_EQ(run(base + d + "/split --epochs=1", d).status, 0);
   // Changed settings are refused on resume.
-  RunResult bad = run(base + d + "/split --epochs=3 --resume --rnn-hidden=32", d);
+  RunResult bad = run(base + d + "/split --epochs=3 --resume --conv-kernel=3", d);
   EXPECT_NE(bad.status, 0);
-  EXPECT_NE(bad.err.find("rnn-hidden=64"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--conv-kernel=5"), std::string::npos) << bad.err;
   RunResult r = run(base + d + "/split --epochs=3 --resume", d);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(loss_rows(d + "/straight/loss_log.csv"), loss_rows(d + "/split/loss_log.csv"));
