@@ -1,0 +1,77 @@
+// A compact CTC character recogniser (LibTorch confined to src/asr/*.cc): log-mel features
+// (asr_features.h) -> 1-D convolutions (the first one subsamples time) -> layer norm ->
+// bidirectional GRU/LSTM layers -> per-frame character posteriors, trained with CTC and
+// SpecAugment-style time and frequency masks. Torch-free header.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "asr/asr_features.h"
+#include "asr/asr_text.h"
+
+namespace tsrir {
+
+struct AsrModelConfig {
+  int conv_layers = 2;
+  int conv_channels = 256;
+  int conv_kernel = 5;
+  int subsampling = 2;          // stride of the first convolution
+  std::string rnn_type = "gru"; // gru | lstm
+  int rnn_layers = 2;
+  int rnn_hidden = 192;         // per direction
+  double dropout = 0.1;
+};
+
+struct AsrTrainOptions {
+  std::string data_dir;         // Kaldi data dir with wav.scp, utt2spk, text (segments optional)
+  std::string model_dir;        // settings.txt, checkpoint.pt, loss_log.csv
+  LogMelOptions features;
+  AsrModelConfig model;
+  int epochs = 20;              // total epochs (a resumed run continues to this count)
+  double max_minutes = 0.0;     // > 0: stop (with a checkpoint) after this much training time
+  uint64_t seed = 0;
+  int num_threads = 1;
+  int batch_size = 16;          // utterances per step (batches are made of similar lengths)
+  double learning_rate = 1e-3;  // Adam
+  double grad_clip = 5.0;       // gradient norm clip
+  int time_masks = 2;           // SpecAugment: masks per utterance ...
+  double max_time_mask = 0.05;  // ... each up to this fraction of the frames
+  int freq_masks = 2;
+  int max_freq_mask = 6;        // mel bins
+  bool resume = false;
+  double progress_interval_s = 10.0;
+};
+
+struct AsrTrainResult {
+  int first_epoch = 0;          // 1-based epoch where this call started
+  int epochs_done = 0;          // complete epochs in the checkpoint
+  long long steps_done = 0;
+  bool interrupted = false;     // SIGINT/SIGTERM: stopped between steps, checkpoint written
+  bool out_of_time = false;     // --max-minutes reached, checkpoint written
+  double last_epoch_loss = 0.0; // mean CTC loss per step of the last complete epoch
+  long long num_parameters = 0;
+  double train_s = 0.0;
+  double peak_rss_mb = 0.0;
+};
+
+AsrTrainResult train_asr(const AsrTrainOptions& options);
+
+struct AsrDecodeOptions {
+  std::string model_dir;
+  std::string data_dir;
+  std::string out_dir;          // hyp, wer, cer, utt_errors (each written atomically)
+  int num_threads = 1;
+  int batch_size = 16;
+};
+
+struct AsrDecodeResult {
+  size_t num_utterances = 0;
+  bool scored = false;          // the data dir had a text file
+  EditCounts words, characters;
+  double decode_s = 0.0;
+  double peak_rss_mb = 0.0;
+};
+
+AsrDecodeResult decode_asr(const AsrDecodeOptions& options);
+
+}  // namespace tsrir
