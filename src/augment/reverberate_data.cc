@@ -64,6 +64,8 @@ class LoadOnceCache {
   std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
 };
 
+}  // namespace
+
 double audio_duration_s(const std::string& rx, const std::string& where) {
   try {
     if (is_pipe_rxfilename(rx) || trim(rx) == "-") {
@@ -78,6 +80,8 @@ double audio_duration_s(const std::string& rx, const std::string& where) {
     throw Error(where + ": " + e.what());
   }
 }
+
+namespace {
 
 // Kaldi's ids for the tables keyed by recording or utterance; `rename_first_value` also renames
 // the first value field (reco2file_and_channel's file id).
