@@ -3,6 +3,7 @@
 Thin wrappers over the C++ extension ``tsrir._tsrir``, which calls the same library functions as
 the programs (rir-simulate, rir-metrics, wav-reverberate, rir-eq apply, reverberate-data): there
 is no second implementation here, only argument conversion. Arrays are float32, full scale 1.0.
+PyTorch: tsrir.data.FarFieldDataset (imports torch; `import tsrir` does not).
 """
 import json as _json
 
