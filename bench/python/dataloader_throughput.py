@@ -30,7 +30,7 @@ import numpy as np
 import torch
 
 import tsrir
-from tsrir.data import FarFieldDataset, read_wav_scp
+from tsrir.data import FarFieldDataset
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.normpath(os.path.join(HERE, "..", "..", "..", "shared", "data"))
@@ -86,7 +86,8 @@ def make_inputs(d, build, recordings, rooms, rng):
 
 class ReadWavs(torch.utils.data.Dataset):
     def __init__(self, data_dir):
-        self.recordings = read_wav_scp(data_dir)
+        with open(os.path.join(data_dir, "wav.scp")) as f:
+            self.recordings = [line.split(None, 1) for line in f if line.strip()]
 
     def __len__(self):
         return len(self.recordings)
@@ -138,8 +139,8 @@ def main():
         audio_s = audio / 16000
         rows.append(("DataLoader reading the pre-written wavs, num_workers=0", n / cpu, n / wall))
 
-        aug = tsrir.Augmenter(**opts)
-        dataset = FarFieldDataset(d + "/in", aug)
+        aug = tsrir.Augmenter(data_dir=d + "/in", **opts)
+        dataset = FarFieldDataset(aug)
         # Epoch 0 fills the load-once caches (every RIR and noise read, resampled and prepared
         # once); later epochs (new draws: copy 2, 3, ...) find them warm, and forked workers
         # inherit them.

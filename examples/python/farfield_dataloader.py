@@ -42,12 +42,12 @@ def main(argv=None):
     p.add_argument("--batch-size", type=int, default=8)
     args = p.parse_args(argv)
 
-    augmenter = tsrir.Augmenter(rir_set_parameters=args.rir_set_parameters,
+    augmenter = tsrir.Augmenter(data_dir=args.data_dir, rir_set_parameters=args.rir_set_parameters,
                                 noise_set_parameters=args.noise_set_parameters, snrs=args.snrs,
                                 speech_rvb_probability=args.speech_rvb_probability,
                                 noise_addition_probability=args.noise_addition_probability,
                                 seed=args.seed, prefix=args.prefix)
-    dataset = FarFieldDataset(args.data_dir, augmenter, copies=args.copies)
+    dataset = FarFieldDataset(augmenter, copies=args.copies)
     # One thread per worker: the C++ work runs without the GIL, the workers are the parallelism.
     loader = torch.utils.data.DataLoader(dataset, batch_size=args.batch_size, num_workers=args.num_workers,
                                          collate_fn=pad_collate, shuffle=True,

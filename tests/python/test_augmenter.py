@@ -56,7 +56,7 @@ def make_data(d):
 
 
 def settings(d):
-    return dict(rir_set_parameters=["0.6, %s/lists/rir_list_a" % d, "%s/lists/rir_list_b" % d],
+    return dict(data_dir=d + "/in", rir_set_parameters=["0.6, %s/lists/rir_list_a" % d, "%s/lists/rir_list_b" % d],
                 noise_set_parameters=["%s/lists/noise_list" % d], snrs="0:15",
                 speech_rvb_probability=0.8, noise_addition_probability=0.7, seed=SEED, prefix="rvb")
 
@@ -83,7 +83,7 @@ def _init_worker(aug):
 
 def _work(item):
     rx, utt, copy = item
-    y, fs = _worker_aug.augment_rxfilename(rx, utt, copy)
+    y, fs = _worker_aug.augment(utt, copy)
     return utt, copy, tsrir.encode_wav(y, fs)
 
 
@@ -116,8 +116,9 @@ class AugmenterVsReverberateData(unittest.TestCase):
             got, _ = read_wav16(tsrir.encode_wav(y, sfs))
             np.testing.assert_array_equal(got, expected, plan["new_id"])
             kinds.add((plan["rir_id"] is not None, plan["noise_id"] is not None))
-            y2, fs2 = self.aug.augment_rxfilename(rx, utt, copy)
+            y2, fs2 = self.aug.augment(utt, copy)
             np.testing.assert_array_equal(y2, y)
+            self.assertEqual(plan["rxfilename"], rx)
         # The seed reached every case: reverberated with and without noise, and noise alone or none.
         self.assertGreaterEqual(len(kinds), 3, kinds)
 
@@ -140,6 +141,10 @@ class AugmenterVsReverberateData(unittest.TestCase):
 
     def test_any_order_any_worker_count(self):
         serial = {(u, c): b for u, c, b in map(_work_with(self.aug), self.items())}
+        # A fresh Augmenter asked in another order, for a late copy first, plans the same.
+        fresh = tsrir.Augmenter(**settings(self.dir))
+        for rx, utt, copy in reversed(self.items()):
+            self.assertEqual(fresh.plan(utt, copy), self.aug.plan(utt, copy))
         shuffled = self.items()
         random.Random(3).shuffle(shuffled)
         for method in ("fork", "spawn"):
@@ -158,16 +163,23 @@ class AugmenterVsReverberateData(unittest.TestCase):
     def test_bad_lists_name_the_file(self):
         bad = self.dir + "/lists/bad_noise"
         write_text(bad, "--noise-id n --noise-type isotropic --room-linkage roomZ %s/noise/short.wav\n" % self.dir)
+        recs = {"u": self.ids[0][1]}
         with self.assertRaisesRegex(tsrir.Error, "bad_noise"):
-            tsrir.Augmenter(rir_set_parameters=[self.dir + "/lists/rir_list_a"], noise_set_parameters=[bad])
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
+                            noise_set_parameters=[bad])
         with self.assertRaises(tsrir.Error):
-            tsrir.Augmenter(rir_set_parameters=[self.dir + "/lists/rir_list_a"], speech_rvb_probability=1.5)
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
+                            speech_rvb_probability=1.5)
+        with self.assertRaisesRegex(tsrir.Error, "not in"):
+            self.aug.plan("no-such-recording")
+        with self.assertRaisesRegex(tsrir.Error, "nowhere"):
+            tsrir.Augmenter(data_dir=self.dir + "/nowhere", rir_set_parameters=[self.dir + "/lists/rir_list_a"])
 
 
 def _work_with(aug):
     def work(item):
         rx, utt, copy = item
-        y, fs = aug.augment_rxfilename(rx, utt, copy)
+        y, fs = aug.augment(utt, copy)
         return utt, copy, tsrir.encode_wav(y, fs)
     return work
 

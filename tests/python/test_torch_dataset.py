@@ -37,7 +37,7 @@ class FarField(unittest.TestCase):
         shutil.rmtree(cls.dir, ignore_errors=True)
 
     def test_four_workers_equal_reverberate_data(self):
-        dataset = FarFieldDataset(self.dir + "/in", tsrir.Augmenter(**settings(self.dir)), copies=2)
+        dataset = FarFieldDataset(tsrir.Augmenter(**settings(self.dir)), copies=2)
         self.assertEqual(len(dataset), 12)
         seen = set()
         for epoch in (0, 1):
@@ -53,7 +53,7 @@ class FarField(unittest.TestCase):
         self.assertEqual(seen, set(self.wav_scp))  # copies 1..4 of every recording, each once
 
     def test_batches(self):
-        dataset = FarFieldDataset(self.dir + "/in", tsrir.Augmenter(**settings(self.dir)))
+        dataset = FarFieldDataset(tsrir.Augmenter(**settings(self.dir)))
         loader = torch.utils.data.DataLoader(dataset, batch_size=4, num_workers=2, collate_fn=pad_collate)
         batches = list(loader)
         self.assertEqual(sum(len(b["id"]) for b in batches), 6)
