@@ -87,7 +87,7 @@ def make_inputs(d, build, recordings, rooms, rng):
 class ReadWavs(torch.utils.data.Dataset):
     def __init__(self, data_dir):
         with open(os.path.join(data_dir, "wav.scp")) as f:
-            self.recordings = [line.split(None, 1) for line in f if line.strip()]
+            self.recordings = [line.strip().split(None, 1) for line in f if line.strip()]
 
     def __len__(self):
         return len(self.recordings)
