@@ -55,16 +55,33 @@ def make_data(d):
     return ids
 
 
+# The library's reverberate-data: one noise per recording with --snrs, or (noise-type registry)
+# Kaldi's foreground/background SNRs and per-type probabilities. The program's options are made
+# from the same dict as the Augmenter's, so both always get the same settings.
+NOISE_TYPES = "background_snrs" in tsrir.Augmenter.option_defaults()
+
+
 def settings(d):
-    return dict(data_dir=d + "/in", rir_set_parameters=["0.6, %s/lists/rir_list_a" % d, "%s/lists/rir_list_b" % d],
-                noise_set_parameters=["%s/lists/noise_list" % d], snrs="0:15",
-                speech_rvb_probability=0.8, noise_addition_probability=0.7, seed=SEED, prefix="rvb")
+    s = dict(rir_set_parameters=["0.6, %s/lists/rir_list_a" % d, "%s/lists/rir_list_b" % d],
+             noise_set_parameters=["%s/lists/noise_list" % d], speech_rvb_probability=0.8, seed=SEED,
+             prefix="rvb", noise_start="random")
+    if NOISE_TYPES:
+        s.update(foreground_snrs="15:5:0", background_snrs="0:15", isotropic_noise_addition_probability=0.7,
+                 pointsource_noise_addition_probability=0.7)
+    else:
+        s.update(snrs="0:15", noise_addition_probability=0.7)
+    return dict(s, data_dir=d + "/in")
 
 
 def program_options(d):
-    return ["--rir-set-parameters=0.6, %s/lists/rir_list_a" % d, "--rir-set-parameters=%s/lists/rir_list_b" % d,
-            "--noise-set-parameters=%s/lists/noise_list" % d, "--snrs=0:15", "--speech-rvb-probability=0.8",
-            "--noise-addition-probability=0.7", "--random-seed=%d" % SEED, "--num-replications=%d" % COPIES]
+    opts = []
+    for key, value in settings(d).items():
+        if key == "data_dir":
+            continue
+        name = "random-seed" if key == "seed" else key.replace("_", "-")
+        for v in (value if isinstance(value, list) else [value]):
+            opts.append("--%s=%s" % (name, v))
+    return opts + ["--num-replications=%d" % COPIES]
 
 
 def read_scp(path):
@@ -115,7 +132,7 @@ class AugmenterVsReverberateData(unittest.TestCase):
             y = self.aug(speech[0], sfs, utt, copy)
             got, _ = read_wav16(tsrir.encode_wav(y, sfs))
             np.testing.assert_array_equal(got, expected, plan["new_id"])
-            kinds.add((plan["rir_id"] is not None, plan["noise_id"] is not None))
+            kinds.add((plan["rir_id"] is not None, len(plan["noises"]) > 0))
             y2, fs2 = self.aug.augment(utt, copy)
             np.testing.assert_array_equal(y2, y)
             self.assertEqual(plan["rxfilename"], rx)
@@ -127,17 +144,23 @@ class AugmenterVsReverberateData(unittest.TestCase):
         for rx, utt, copy in self.items():
             plan = self.aug.plan(utt, copy)
             pipe = pipes[plan["new_id"]]
-            if plan["rir_id"] is None and plan["noise_id"] is None:
+            if plan["rir_id"] is None and not plan["noises"]:
                 self.assertEqual(pipe, rx)
                 continue
-            words = shlex.split(pipe.split("|")[-2] if rx.endswith("|") else pipe.rstrip("|"))
+            # The outer wav-reverberate's options (after the source's own pipe, if any).
+            words = shlex.split(pipe.split(" | ")[-1] if rx.endswith("|") else pipe)
             opts = dict(w[2:].split("=", 1) for w in words if w.startswith("--") and "=" in w)
             self.assertEqual(opts.get("impulse-response"), plan["rir_rxfilename"])
-            self.assertEqual(opts.get("additive-signals"), plan["noise_rxfilename"])
-            if plan["noise_id"] is not None:
-                self.assertAlmostEqual(float(opts["snrs"]), plan["snr_db"], places=9)
-                self.assertAlmostEqual(float(opts["additive-offsets"]), plan["noise_offset_s"], places=9)
-                self.assertTrue(0 <= plan["snr_db"] < 15)
+            if not plan["noises"]:
+                self.assertNotIn("additive-signals", opts)
+                continue
+            snrs = [float(v) for v in opts["snrs"].split(",")]
+            self.assertEqual(len(snrs), len(plan["noises"]))
+            for n, snr in zip(plan["noises"], snrs):
+                self.assertAlmostEqual(snr, n["snr_db"], places=9)
+                self.assertIn(n["rxfilename"], opts["additive-signals"])
+            offsets = [float(v) for v in opts["additive-offsets"].split(",")]
+            self.assertEqual(offsets, [n["offset_s"] for n in plan["noises"]])
 
     def test_any_order_any_worker_count(self):
         serial = {(u, c): b for u, c, b in map(_work_with(self.aug), self.items())}
@@ -157,6 +180,7 @@ class AugmenterVsReverberateData(unittest.TestCase):
         rx, utt = self.ids[0][1], self.ids[0][0]
         speech, fs = tsrir.read_audio(rx)
         other = tsrir.Augmenter(**dict(settings(self.dir), seed=SEED + 1))
+        self.assertEqual(other.options["seed"], SEED + 1)
         plans = {str(self.aug.plan(utt, c)) for c in range(1, 6)} | {str(other.plan(utt, 1))}
         self.assertGreater(len(plans), 3)
 
@@ -170,6 +194,8 @@ class AugmenterVsReverberateData(unittest.TestCase):
         with self.assertRaises(tsrir.Error):
             tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
                             speech_rvb_probability=1.5)
+        with self.assertRaisesRegex(tsrir.Error, "unknown option 'snr'"):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"], snr="1")
         with self.assertRaisesRegex(tsrir.Error, "not in"):
             self.aug.plan("no-such-recording")
         with self.assertRaisesRegex(tsrir.Error, "nowhere"):

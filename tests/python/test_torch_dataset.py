@@ -64,12 +64,9 @@ class FarField(unittest.TestCase):
 
     def test_example_script_runs(self):
         src = os.environ.get("TSRIR_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
-        s = settings(self.dir)
+        opts = [o for o in program_options(self.dir) if not o.startswith("--num-replications")]
         args = [sys.executable, os.path.join(src, "examples/python/farfield_dataloader.py"), self.dir + "/in",
-                "--noise-set-parameters", s["noise_set_parameters"][0], "--snrs", "0:15", "--seed", "11",
-                "--num-workers", "4", "--epochs", "2", "--batch-size", "2"]
-        for r in s["rir_set_parameters"]:
-            args += ["--rir-set-parameters", r]
+                "--num-workers", "4", "--epochs", "2", "--batch-size", "2"] + opts
         out = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
         self.assertEqual(out.returncode, 0, out.stderr)
         self.assertIn("epoch 1: 6 utterances", out.stdout)
