@@ -61,7 +61,7 @@ def make_data(d):
 NOISE_TYPES = "background_snrs" in tsrir.Augmenter.option_defaults()
 
 
-def settings(d):
+def settings(d, **overrides):
     s = dict(rir_set_parameters=["0.6, %s/lists/rir_list_a" % d, "%s/lists/rir_list_b" % d],
              noise_set_parameters=["%s/lists/noise_list" % d], speech_rvb_probability=0.8, seed=SEED,
              prefix="rvb", noise_start="random")
@@ -70,12 +70,13 @@ def settings(d):
                  pointsource_noise_addition_probability=0.7)
     else:
         s.update(snrs="0:15", noise_addition_probability=0.7)
+    s.update(overrides)
     return dict(s, data_dir=d + "/in")
 
 
-def program_options(d):
+def program_options(d, **overrides):
     opts = []
-    for key, value in settings(d).items():
+    for key, value in settings(d, **overrides).items():
         if key == "data_dir":
             continue
         name = "random-seed" if key == "seed" else key.replace("_", "-")
@@ -105,13 +106,16 @@ def _work(item):
 
 
 class AugmenterVsReverberateData(unittest.TestCase):
+    OVERRIDES = {}  # noise from a random offset, looped (the paper's way)
+
     @classmethod
     def setUpClass(cls):
         cls.dir = d = temp_dir("aug")
         cls.ids = make_data(d)
-        run([program("reverberate-data")] + program_options(d) + ["--write-wavs=%s/wavs" % d, d + "/in", d + "/out"])
-        run([program("reverberate-data")] + program_options(d) + [d + "/in", d + "/out_pipes"])
-        cls.aug = tsrir.Augmenter(**settings(d))
+        opts = program_options(d, **cls.OVERRIDES)
+        run([program("reverberate-data")] + opts + ["--write-wavs=%s/wavs" % d, d + "/in", d + "/out"])
+        run([program("reverberate-data")] + opts + [d + "/in", d + "/out_pipes"])
+        cls.aug = tsrir.Augmenter(**settings(d, **cls.OVERRIDES))
 
     @classmethod
     def tearDownClass(cls):
@@ -159,13 +163,19 @@ class AugmenterVsReverberateData(unittest.TestCase):
             for n, snr in zip(plan["noises"], snrs):
                 self.assertAlmostEqual(snr, n["snr_db"], places=9)
                 self.assertIn(n["rxfilename"], opts["additive-signals"])
-            offsets = [float(v) for v in opts["additive-offsets"].split(",")]
-            self.assertEqual(offsets, [n["offset_s"] for n in plan["noises"]])
+            starts = [float(v) for v in opts["start-times"].split(",")]
+            for n, start in zip(plan["noises"], starts):
+                self.assertAlmostEqual(start, n["start_time_s"], places=6)
+            if "additive-offsets" in opts:
+                offsets = [float(v) for v in opts["additive-offsets"].split(",")]
+                self.assertEqual(offsets, [n["offset_s"] for n in plan["noises"]])
+            else:  # Kaldi's own options only: every noise from its start
+                self.assertEqual([n["offset_s"] for n in plan["noises"]], [0.0] * len(plan["noises"]))
 
     def test_any_order_any_worker_count(self):
         serial = {(u, c): b for u, c, b in map(_work_with(self.aug), self.items())}
         # A fresh Augmenter asked in another order, for a late copy first, plans the same.
-        fresh = tsrir.Augmenter(**settings(self.dir))
+        fresh = tsrir.Augmenter(**settings(self.dir, **self.OVERRIDES))
         for rx, utt, copy in reversed(self.items()):
             self.assertEqual(fresh.plan(utt, copy), self.aug.plan(utt, copy))
         shuffled = self.items()
@@ -179,18 +189,20 @@ class AugmenterVsReverberateData(unittest.TestCase):
     def test_copies_and_seeds_differ(self):
         rx, utt = self.ids[0][1], self.ids[0][0]
         speech, fs = tsrir.read_audio(rx)
-        other = tsrir.Augmenter(**dict(settings(self.dir), seed=SEED + 1))
+        other = tsrir.Augmenter(**settings(self.dir, **dict(self.OVERRIDES, seed=SEED + 1)))
         self.assertEqual(other.options["seed"], SEED + 1)
         plans = {str(self.aug.plan(utt, c)) for c in range(1, 6)} | {str(other.plan(utt, 1))}
         self.assertGreater(len(plans), 3)
 
     def test_bad_lists_name_the_file(self):
         bad = self.dir + "/lists/bad_noise"
-        write_text(bad, "--noise-id n --noise-type isotropic --room-linkage roomZ %s/noise/short.wav\n" % self.dir)
+        write_text(bad, "--noise-id n --noise-type no-such-type %s/noise/short.wav\n" % self.dir)
         recs = {"u": self.ids[0][1]}
         with self.assertRaisesRegex(tsrir.Error, "bad_noise"):
             tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
                             noise_set_parameters=[bad])
+        with self.assertRaisesRegex(tsrir.Error, "nothere"):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/nothere/rir_list"])
         with self.assertRaises(tsrir.Error):
             tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
                             speech_rvb_probability=1.5)
@@ -200,6 +212,12 @@ class AugmenterVsReverberateData(unittest.TestCase):
             self.aug.plan("no-such-recording")
         with self.assertRaisesRegex(tsrir.Error, "nowhere"):
             tsrir.Augmenter(data_dir=self.dir + "/nowhere", rir_set_parameters=[self.dir + "/lists/rir_list_a"])
+
+
+class AugmenterVsReverberateDataZeroStart(AugmenterVsReverberateData):
+    # Kaldi's way: noise from its start (with noise types: background noise extended to the
+    # recording by a nested wav-reverberate, point sources at random start times).
+    OVERRIDES = {"noise_start": "zero"}
 
 
 def _work_with(aug):
