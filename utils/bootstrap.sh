@@ -9,7 +9,8 @@ build_dir=${BUILD_DIR:-$root/build}
 packages=(build-essential cmake ninja-build pkg-config
           libtorch-dev libopenblas0-pthread libsndfile1-dev libsox-dev libsox-fmt-all sox
           libfftw3-dev libeigen3-dev libboost-program-options-dev libgtest-dev
-          espeak-ng flac)
+          espeak-ng flac
+          python3-dev pybind11-dev python3-numpy python3-torch)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -68,6 +68,8 @@ class LoadOnceCache {
   std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
 };
 
+}  // namespace
+
 // A pipe's WAV header is enough when it states the size (flac -d, sox): the command is stopped
 // after it, as Kaldi's get_reco2dur.sh does; otherwise it is read to the end.
 double audio_duration_s(const std::string& rx, const std::string& where) {
@@ -75,6 +77,8 @@ double audio_duration_s(const std::string& rx, const std::string& where) {
   if (!(seconds > 0)) throw Error(where + ": zero-length audio");
   return seconds;
 }
+
+namespace {
 
 // Kaldi's ids for the tables keyed by recording or utterance; `rename_first_value` also renames
 // the first value field (reco2file_and_channel's file id).

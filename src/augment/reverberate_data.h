@@ -54,6 +54,10 @@ struct ReverberateDataSummary {
 ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
                                             const ReverberateDataOptions& options);
 
+// Duration (s) of an audio rxfilename at its own rate, from a file's header (a pipe is decoded):
+// what noise offsets are drawn against. Errors are prefixed by `where`.
+double audio_duration_s(const std::string& rx, const std::string& where);
+
 // Default pipe program: "wav-reverberate" in the directory of the running executable if it
 // exists there (so pipes use our implementation even when Kaldi's is first on PATH), else the
 // bare name, found through PATH when the pipe runs.

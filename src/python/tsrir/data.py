@@ -1,0 +1,71 @@
+"""On-the-fly far-field copies of a Kaldi data directory, for PyTorch data loaders.
+
+FarFieldDataset(augmenter, copies=1) lists the (copy, recording) pairs of a tsrir.Augmenter made on
+a Kaldi data dir (tsrir.Augmenter(data_dir=..., ...)) in reverberate-data's order (copies 1..N,
+recordings in wav.scp byte order) and returns for each the far-field copy
+that `reverberate-data --num-replications=N --write-wavs=...` writes for it, as a float32
+torch tensor (full scale 1.0). Draws depend on (seed, copy, recording id) only, so the output
+does not depend on num_workers, the worker an item lands in, or the order it is asked for; a new
+epoch gets new draws with `dataset.set_epoch(e)` (copies e*N+1 .. e*N+N: what reverberate-data
+would write as those copies).
+
+Needs torch only for the tensors (python3-torch); without torch use .item_numpy(i).
+Recordings only: segments are not cut (as reverberate-data, which works on recordings).
+"""
+import numpy as np
+
+from . import _tsrir
+
+
+try:
+    import torch
+    _Base = torch.utils.data.Dataset
+except ImportError:  # pragma: no cover
+    torch = None
+    _Base = object
+
+
+class FarFieldDataset(_Base):
+    def __init__(self, augmenter, copies=1):
+        if copies < 1:
+            raise _tsrir.Error("copies must be >= 1")
+        self.recordings = augmenter.recordings
+        self.augmenter = augmenter
+        self.copies = copies
+        self.epoch = 0
+
+    def set_epoch(self, epoch):
+        self.epoch = int(epoch)
+
+    def __len__(self):
+        return self.copies * len(self.recordings)
+
+    def key(self, index):
+        """(copy, recording id, rxfilename) of item `index`."""
+        if not 0 <= index < len(self):
+            raise IndexError(index)
+        copy = index // len(self.recordings) + 1 + self.epoch * self.copies
+        rid, rx = self.recordings[index % len(self.recordings)]
+        return copy, rid, rx
+
+    def item_numpy(self, index):
+        copy, rid, rx = self.key(index)
+        samples, fs = self.augmenter.augment(rid, copy)
+        return {"id": self.augmenter.plan(rid, copy)["new_id"], "recording": rid, "copy": copy,
+                "fs": fs, "audio": samples}
+
+    def __getitem__(self, index):
+        item = self.item_numpy(index)
+        if torch is not None:
+            item["audio"] = torch.from_numpy(np.ascontiguousarray(item["audio"]))
+        return item
+
+
+def pad_collate(items):
+    """Batches items of different lengths: audio zero-padded to the longest, with lengths."""
+    lengths = [len(i["audio"]) for i in items]
+    audio = torch.zeros(len(items), max(lengths))
+    for row, i in enumerate(items):
+        audio[row, : lengths[row]] = i["audio"]
+    return {"id": [i["id"] for i in items], "audio": audio, "lengths": torch.tensor(lengths),
+            "fs": items[0]["fs"]}

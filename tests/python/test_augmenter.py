@@ -1,0 +1,232 @@
+"""Augmenter against reverberate-data on the same data directory, lists and seed: every copy of
+every recording equals the wav that reverberate-data --write-wavs writes (after the same 16-bit
+encoding), and the plan equals the pipe reverberate-data writes without --write-wavs. Then the
+data-loader properties: the same output in any order, in 4 forked or spawned worker processes,
+and after pickling."""
+import multiprocessing as mp
+import os
+import random
+import shlex
+import shutil
+import unittest
+
+from tsrir_testlib import (np, program, read_wav16, run, speech_like, synthetic_rir, temp_dir,
+                           write_text, write_wav16)
+import tsrir
+
+FS = 16000
+SEED = 11
+COPIES = 2
+
+
+def make_data(d):
+    """A Kaldi data dir (6 recordings, one of them a pipe), two RIR sets (one RIR at 48 kHz) and a
+    noise list (an isotropic noise linked to a room, an 8 kHz point source, a short one)."""
+    for sub in ("audio", "rirs", "noise", "lists", "in"):
+        os.makedirs(os.path.join(d, sub), exist_ok=True)
+    wav_scp, utt2spk, ids = [], [], []
+    k = 0
+    for spk in ("spkA", "spkB"):
+        for i in range(3):
+            utt = "%s-u%d" % (spk, i)
+            path = "%s/audio/%s.wav" % (d, utt)
+            write_wav16(path, speech_like(9600 + 3200 * i, FS, 100 + k), FS)
+            rx = ("cat %s |" % shlex.quote(path)) if k == 4 else path
+            wav_scp.append("%s %s\n" % (utt, rx))
+            utt2spk.append("%s %s\n" % (utt, spk))
+            ids.append((utt, rx))
+            k += 1
+    write_text(d + "/in/wav.scp", "".join(wav_scp))
+    write_text(d + "/in/utt2spk", "".join(utt2spk))
+    write_wav16(d + "/rirs/a1.wav", synthetic_rir(4000, FS, 40, 0.3, 1), FS)
+    write_wav16(d + "/rirs/a2.wav", synthetic_rir(6000, FS, 70, 0.5, 2), FS)
+    write_wav16(d + "/rirs/b1_48k.wav", synthetic_rir(12000, 48000, 100, 0.2, 3), 48000)
+    write_text(d + "/lists/rir_list_a", "--rir-id a1 --room-id roomA %s/rirs/a1.wav\n"
+                                        "--rir-id a2 --room-id roomA %s/rirs/a2.wav\n" % (d, d))
+    write_text(d + "/lists/rir_list_b", "--rir-id b1 --room-id roomB %s/rirs/b1_48k.wav\n" % d)
+    rng = np.random.default_rng(4)
+    write_wav16(d + "/noise/iso_a.wav", 0.3 * rng.standard_normal(48000), FS)
+    write_wav16(d + "/noise/ps_8k.wav", 0.3 * rng.standard_normal(16000), 8000)
+    write_wav16(d + "/noise/short.wav", 0.3 * rng.standard_normal(4800), FS)
+    write_text(d + "/lists/noise_list",
+               "--noise-id iso_a --noise-type isotropic --room-linkage roomA %s/noise/iso_a.wav\n"
+               "--noise-id ps_8k --noise-type point-source --bg-fg-type background %s/noise/ps_8k.wav\n"
+               "--noise-id short --noise-type point-source %s/noise/short.wav\n" % (d, d, d))
+    return ids
+
+
+# The library's reverberate-data: one noise per recording with --snrs, or (noise-type registry)
+# Kaldi's foreground/background SNRs and per-type probabilities. The program's options are made
+# from the same dict as the Augmenter's, so both always get the same settings.
+NOISE_TYPES = "background_snrs" in tsrir.Augmenter.option_defaults()
+
+
+def settings(d, **overrides):
+    s = dict(rir_set_parameters=["0.6, %s/lists/rir_list_a" % d, "%s/lists/rir_list_b" % d],
+             noise_set_parameters=["%s/lists/noise_list" % d], speech_rvb_probability=0.8, seed=SEED,
+             prefix="rvb", noise_start="random")
+    if NOISE_TYPES:
+        s.update(foreground_snrs="15:5:0", background_snrs="0:15", isotropic_noise_addition_probability=0.7,
+                 pointsource_noise_addition_probability=0.7)
+    else:
+        s.update(snrs="0:15", noise_addition_probability=0.7)
+    s.update(overrides)
+    return dict(s, data_dir=d + "/in")
+
+
+def program_options(d, **overrides):
+    opts = []
+    for key, value in settings(d, **overrides).items():
+        if key == "data_dir":
+            continue
+        name = "random-seed" if key == "seed" else key.replace("_", "-")
+        for v in (value if isinstance(value, list) else [value]):
+            opts.append("--%s=%s" % (name, v))
+    return opts + ["--num-replications=%d" % COPIES]
+
+
+def read_scp(path):
+    with open(path) as f:
+        return dict(line.rstrip("\n").split(" ", 1) for line in f if line.strip())
+
+
+# Worker-side state for the multiprocessing tests (one Augmenter per worker process).
+_worker_aug = None
+
+
+def _init_worker(aug):
+    global _worker_aug
+    _worker_aug = aug
+
+
+def _work(item):
+    rx, utt, copy = item
+    y, fs = _worker_aug.augment(utt, copy)
+    return utt, copy, tsrir.encode_wav(y, fs)
+
+
+class AugmenterVsReverberateData(unittest.TestCase):
+    OVERRIDES = {}  # noise from a random offset, looped (the paper's way)
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = d = temp_dir("aug")
+        cls.ids = make_data(d)
+        opts = program_options(d, **cls.OVERRIDES)
+        run([program("reverberate-data")] + opts + ["--write-wavs=%s/wavs" % d, d + "/in", d + "/out"])
+        run([program("reverberate-data")] + opts + [d + "/in", d + "/out_pipes"])
+        cls.aug = tsrir.Augmenter(**settings(d, **cls.OVERRIDES))
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def items(self):
+        return [(rx, utt, copy) for copy in range(1, COPIES + 1) for utt, rx in self.ids]
+
+    def test_outputs_equal_reverberate_data_wavs(self):
+        wav_scp = read_scp(self.dir + "/out/wav.scp")
+        self.assertEqual(len(wav_scp), COPIES * len(self.ids))
+        kinds = set()
+        for rx, utt, copy in self.items():
+            plan = self.aug.plan(utt, copy)
+            self.assertIn(plan["new_id"], wav_scp)
+            expected, fs = read_wav16(wav_scp[plan["new_id"]])
+            speech, sfs = tsrir.read_audio(rx)
+            y = self.aug(speech[0], sfs, utt, copy)
+            got, _ = read_wav16(tsrir.encode_wav(y, sfs))
+            np.testing.assert_array_equal(got, expected, plan["new_id"])
+            kinds.add((plan["rir_id"] is not None, len(plan["noises"]) > 0))
+            y2, fs2 = self.aug.augment(utt, copy)
+            np.testing.assert_array_equal(y2, y)
+            self.assertEqual(plan["rxfilename"], rx)
+        # The seed reached every case: reverberated with and without noise, and noise alone or none.
+        self.assertGreaterEqual(len(kinds), 3, kinds)
+
+    def test_plans_equal_reverberate_data_pipes(self):
+        pipes = read_scp(self.dir + "/out_pipes/wav.scp")
+        for rx, utt, copy in self.items():
+            plan = self.aug.plan(utt, copy)
+            pipe = pipes[plan["new_id"]]
+            if plan["rir_id"] is None and not plan["noises"]:
+                self.assertEqual(pipe, rx)
+                continue
+            # The outer wav-reverberate's options (after the source's own pipe, if any).
+            words = shlex.split(pipe.split(" | ")[-1] if rx.endswith("|") else pipe)
+            opts = dict(w[2:].split("=", 1) for w in words if w.startswith("--") and "=" in w)
+            self.assertEqual(opts.get("impulse-response"), plan["rir_rxfilename"])
+            if not plan["noises"]:
+                self.assertNotIn("additive-signals", opts)
+                continue
+            snrs = [float(v) for v in opts["snrs"].split(",")]
+            self.assertEqual(len(snrs), len(plan["noises"]))
+            for n, snr in zip(plan["noises"], snrs):
+                self.assertAlmostEqual(snr, n["snr_db"], places=9)
+                self.assertIn(n["rxfilename"], opts["additive-signals"])
+            starts = [float(v) for v in opts["start-times"].split(",")]
+            for n, start in zip(plan["noises"], starts):
+                self.assertAlmostEqual(start, n["start_time_s"], places=6)
+            if "additive-offsets" in opts:
+                offsets = [float(v) for v in opts["additive-offsets"].split(",")]
+                self.assertEqual(offsets, [n["offset_s"] for n in plan["noises"]])
+            else:  # Kaldi's own options only: every noise from its start
+                self.assertEqual([n["offset_s"] for n in plan["noises"]], [0.0] * len(plan["noises"]))
+
+    def test_any_order_any_worker_count(self):
+        serial = {(u, c): b for u, c, b in map(_work_with(self.aug), self.items())}
+        # A fresh Augmenter asked in another order, for a late copy first, plans the same.
+        fresh = tsrir.Augmenter(**settings(self.dir, **self.OVERRIDES))
+        for rx, utt, copy in reversed(self.items()):
+            self.assertEqual(fresh.plan(utt, copy), self.aug.plan(utt, copy))
+        shuffled = self.items()
+        random.Random(3).shuffle(shuffled)
+        for method in ("fork", "spawn"):
+            ctx = mp.get_context(method)
+            with ctx.Pool(4, initializer=_init_worker, initargs=(self.aug,)) as pool:
+                parallel = {(u, c): b for u, c, b in pool.map(_work, shuffled, chunksize=1)}
+            self.assertEqual(parallel, serial, method)
+
+    def test_copies_and_seeds_differ(self):
+        rx, utt = self.ids[0][1], self.ids[0][0]
+        speech, fs = tsrir.read_audio(rx)
+        other = tsrir.Augmenter(**settings(self.dir, **dict(self.OVERRIDES, seed=SEED + 1)))
+        self.assertEqual(other.options["seed"], SEED + 1)
+        plans = {str(self.aug.plan(utt, c)) for c in range(1, 6)} | {str(other.plan(utt, 1))}
+        self.assertGreater(len(plans), 3)
+
+    def test_bad_lists_name_the_file(self):
+        bad = self.dir + "/lists/bad_noise"
+        write_text(bad, "--noise-id n --noise-type no-such-type %s/noise/short.wav\n" % self.dir)
+        recs = {"u": self.ids[0][1]}
+        with self.assertRaisesRegex(tsrir.Error, "bad_noise"):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
+                            noise_set_parameters=[bad])
+        with self.assertRaisesRegex(tsrir.Error, "nothere"):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/nothere/rir_list"])
+        with self.assertRaises(tsrir.Error):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"],
+                            speech_rvb_probability=1.5)
+        with self.assertRaisesRegex(tsrir.Error, "unknown option 'snr'"):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"], snr="1")
+        with self.assertRaisesRegex(tsrir.Error, "not in"):
+            self.aug.plan("no-such-recording")
+        with self.assertRaisesRegex(tsrir.Error, "nowhere"):
+            tsrir.Augmenter(data_dir=self.dir + "/nowhere", rir_set_parameters=[self.dir + "/lists/rir_list_a"])
+
+
+class AugmenterVsReverberateDataZeroStart(AugmenterVsReverberateData):
+    # Kaldi's way: noise from its start (with noise types: background noise extended to the
+    # recording by a nested wav-reverberate, point sources at random start times).
+    OVERRIDES = {"noise_start": "zero"}
+
+
+def _work_with(aug):
+    def work(item):
+        rx, utt, copy = item
+        y, fs = aug.augment(utt, copy)
+        return utt, copy, tsrir.encode_wav(y, fs)
+    return work
+
+
+if __name__ == "__main__":
+    unittest.main()
