@@ -230,8 +230,8 @@ void check_claim(const std::string& dir) {
   const fs::file_status st = fs::status(dir, ec);
   if (!fs::exists(st)) return;
   if (!fs::is_directory(st)) throw Error("output directory " + dir + " exists and is not a directory");
-  if (fs::exists(marker_path(dir))) return;
   remove_dead_staging(dir);
+  if (fs::exists(marker_path(dir))) return;
   std::vector<std::string> others;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
@@ -285,6 +285,12 @@ void check_name(const std::string& dir, const Marker& marker, const std::string&
     throw Error(path + " was written by " + describe_writer(e) + ", not by this " + output_policy().program +
                 (owner == "-" ? "" : " run for " + owner) + ": replacing it would change an output that " +
                 "something else may point at; " + way_out(dir));
+  }
+  // Ours, but changed since it was written (edited, or replaced by the user): theirs now.
+  long long size = 0, mtime = 0;
+  if (e.size >= 0 && stat_file(path, &size, &mtime) && (size != e.size || mtime != e.mtime_ns)) {
+    throw Error(path + " was written by " + describe_writer(e) + " but has changed since (" + kOwnedMarkerName +
+                " records its size and time); it is left alone: " + way_out(dir));
   }
 }
 
