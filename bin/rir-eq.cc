@@ -223,6 +223,7 @@ int one_shot_main(int argc, const char* const* argv) {
   add_apply_options(cl, s);
   cl.option("seed", &s.seed, "Seed of the EM initialisation and of the target-gain draws");
   cl.option("num-threads", &s.num_threads, "Threads");
+  register_output_options(&cl);
   const auto args = cl.parse(argc, argv, 2, 2);
   if (s.real.empty()) throw Error("--real=<real-rir-scp> is required (or use 'rir-eq fit' / 'rir-eq apply')\n\n" + cl.usage_text());
   const ApplySetOptions options = apply_options(s);

@@ -318,7 +318,9 @@ OutputPolicy& output_policy() {
 }
 
 void register_output_options(CommandLine* cli) {
-  output_policy().program = cli->program();
+  // The program, not its sub-command: "rir-eq apply" and "rir-eq" write the same outputs.
+  const std::string& name = cli->program();
+  output_policy().program = name.substr(0, name.find(' '));
   cli->flag("overwrite", &output_policy().overwrite,
             "write into an output directory that tsrir did not write (or replace files another run "
             "wrote there); only files of the names this program writes are replaced, nothing is deleted");

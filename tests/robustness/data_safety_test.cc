@@ -456,4 +456,53 @@ TEST_F(DataSafety, CrlfDataDirIsOneErrorEverywhere) {
   EXPECT_EQ(r.status, 0) << r.output;
 }
 
+// Room ids travel with the RIRs whichever list form a program is given (issue 14, item 3): an scp
+// has none, so the rir_list beside it gives them; an scp without one is each RIR its own room, with
+// a warning; an scp whose ids the list beside it lacks is an error naming both.
+using FirstContact = DataSafety;
+TEST_F(FirstContact, RoomIdsTravelWithScpInputs) {
+  if (need("rir-eq").empty()) GTEST_SKIP() << "rir-eq not built";
+  make_rirs("rirs", 16);
+  ASSERT_EQ(run({need("rir-eq"), "fit", "rirs/rir.scp", "eq.model"}).status, 0);
+  auto rooms_of = [&](const std::string& list) {
+    std::map<std::string, std::string> rooms;
+    std::istringstream in(read_bytes(path(list)));
+    for (std::string id, room, x; in >> x >> id >> x >> room;) {
+      std::getline(in, x);
+      rooms[id] = room;
+    }
+    return rooms;
+  };
+  const auto expected = rooms_of("rirs/rir_list");
+  ASSERT_EQ(expected.at("r3"), "room1");
+  std::vector<std::vector<std::string>> programs = {{need("rir-eq"), "apply", "eq.model"}};
+  if (!need("ts-rirgan-train").empty() && !need("gas-to-real").empty()) {
+    ASSERT_EQ(run({need("ts-rirgan-train"), "--real=rirs/rir.scp", "--synthetic=rirs/rir_list", "--width=2",
+                   "--batch-size=2", "--steps=1", "--num-threads=1", "model"}).status, 0);
+    programs.push_back({need("gas-to-real"), "--model=model"});
+  }
+  int n = 0;
+  for (auto argv : programs) {
+    const std::string out = "out" + std::to_string(n++);
+    argv.push_back("rirs/rir.scp");
+    argv.push_back(out);
+    auto r = run(argv);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(rooms_of(out + "/rir_list"), expected) << argv[0];
+  }
+  // Without a rir_list beside the scp: one room per RIR, said on stderr.
+  fs::create_directories(path("alone"));
+  write_bytes(path("alone/rir.scp"), read_bytes(path("rirs/rir.scp")));
+  auto r = run({need("rir-eq"), "apply", "eq.model", "alone/rir.scp", "out_alone"});
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("no rir_list beside it"), std::string::npos) << r.output;
+  EXPECT_EQ(rooms_of("out_alone/rir_list").at("r3"), "r3");
+  // A rir_list beside that does not hold the scp's ids: an error naming it.
+  write_bytes(path("alone/rir_list"), "--rir-id other --room-id x rirs/r0.wav\n");
+  r = run({need("rir-eq"), "apply", "eq.model", "alone/rir.scp", "out_bad"});
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("alone/rir_list"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(path("out_bad")));
+}
+
 }  // namespace
