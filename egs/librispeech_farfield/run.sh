@@ -31,6 +31,9 @@
 # Set names read left to right as the operations applied: gas_eq = GAS+EQ, gas_gsr = G(GAS),
 # gas_eq_gsr = G(GAS+EQ), gas_gsr_eq = G(GAS)+EQ (the paper's best), real, clean (no RIR).
 set -euo pipefail
+# Whatever `set -e` stops on says so: the command, its line and its exit status (a stage's own
+# checks die with a sentence first; this catches what they do not foresee).
+trap 'rc=$?; echo "run.sh: ERROR: line $LINENO: command failed (exit status $rc): $BASH_COMMAND" >&2' ERR
 cd "$(dirname "$(readlink -f "$0")")"
 
 # ---- configuration (every variable is an option: --name value, dashes for underscores) ----
@@ -106,8 +109,8 @@ done
 set -- ${args[@]+"${args[@]}"}
 for ((i = 1; i < $#; i++)); do
   j=$((i + 1))
-  [ "${!i}" = --demo ] && demo=${!j}
-  [ "${!i}" = --demo-size ] && demo_size=${!j}
+  if [ "${!i}" = --demo ]; then demo=${!j}; fi
+  if [ "${!i}" = --demo-size ]; then demo_size=${!j}; fi
 done
 if [ "$demo" = true ]; then
   data=demo/data; exp=demo/exp; results=demo/RESULTS.md; stop_stage=7
@@ -152,7 +155,10 @@ end_stage() { log "stage $1 done ($(( SECONDS - t_stage )) s): $2"; }
 die() { echo "run.sh: ERROR: $*" >&2; exit 1; }
 # A step is done when its marker holds the same signature (the settings it ran with).
 is_done() { [ -f "$1" ] && [ "$(cat "$1")" = "$2" ]; }
-mark_done() { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; }
+mark_done() { { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; } || die "cannot write the stage marker $1"; }
+# The bytes of whichever of the files exist (a stage signature's ingredients); never fails, so a
+# missing file cannot end the script silently under `set -e -o pipefail` inside "$(...)".
+content_of() { local f; for f in "$@"; do if [ -f "$f" ]; then cat "$f"; fi; done; return 0; }
 require() { for f in "$@"; do [ -s "$f" ] || die "missing input $f (run the earlier stages first)"; done; }
 need_program() {
   for p in "$@"; do
@@ -202,7 +208,7 @@ log "$( [ "$demo" = true ] && echo "demo ($demo_size)" || echo "full experiment"
 if [ $stage -le 0 ] && [ $stop_stage -ge 0 ]; then
   if [ "$demo" = true ]; then
     begin_stage 0 "embedded demo corpus (speech, RIRs, noise)"
-    sig="size=$demo_size shared=$shared_data:$(for p in speech rirs/r3vival noise; do [ -e "$shared_data/$p" ] && printf '%s,' "$p"; done) standin=$standin_model seed=$seed"
+    sig="size=$demo_size shared=$shared_data:$(for p in speech rirs/r3vival noise; do if [ -e "$shared_data/$p" ]; then printf '%s,' "$p"; fi; done) standin=$standin_model seed=$seed"
     if is_done "$data/local/demo_corpus/.done" "$sig"; then
       log "stage 0: demo corpus already made"
     else
@@ -333,7 +339,7 @@ if [ $stage -le 3 ] && [ $stop_stage -ge 3 ]; then
   begin_stage 3 "sub-band EQ fitted on the $(count "$rirs/real_train/rir.scp") real training RIRs (rir-eq fit $eq_opts)"
   need_program rir-eq
   require "$rirs/real_train/rir_list"
-  sig="$eq_opts $(cat "$rirs/real_train/.done" 2>/dev/null) $(md5sum <"$conf/rir-eq.conf")"
+  sig="$eq_opts $(content_of "$rirs/real_train/.done") $(md5sum <"$conf/rir-eq.conf")"
   if is_done "$exp/eq/.done" "$sig"; then
     log "stage 3: EQ model already fitted"
   else
@@ -356,16 +362,20 @@ if [ $stage -le 4 ] && [ $stop_stage -ge 4 ]; then
     begin_stage 4 "TS-RIRGAN training (steps $gan_steps, width $gan_width, batch $gan_batch_size, $gan_device)"
     need_program ts-rirgan-train
     require "$rirs/real_train/rir_list" "$rirs/gas_train/rir_list"
-    sig="steps=$gan_steps width=$gan_width batch=$gan_batch_size opts=$gan_opts seed=$seed threads=${gan_num_threads:-$num_threads} $(cat "$rirs/real_train/.done" "$rirs/gas_train/.done" 2>/dev/null | md5sum)"
+    sig="steps=$gan_steps width=$gan_width batch=$gan_batch_size opts=$gan_opts seed=$seed threads=${gan_num_threads:-$num_threads} $(content_of "$rirs/real_train/.done" "$rirs/gas_train/.done" | md5sum)"
     if is_done "$gan_dir/.done" "$sig"; then
       log "stage 4: TS-RIRGAN already trained"
     else
       resume=()
       # An interrupted run with the same settings continues from its checkpoint.
-      if [ -f "$gan_dir/checkpoint.pt" ] && [ -f "$gan_dir/.settings" ] && [ "$(cat "$gan_dir/.settings")" = "$sig" ]; then
+      # The settings it runs with sit beside the model dir: the dir itself holds only what
+      # ts-rirgan-train writes (its .tsrir-owned marker lists them; docs/robustness.md).
+      if [ -f "$gan_dir/checkpoint.pt" ] && [ -f "$gan_dir.settings" ] && [ "$(cat "$gan_dir.settings")" = "$sig" ]; then
         resume=(--resume); log "stage 4: resuming from $gan_dir/checkpoint.pt"
       else
-        rm -rf "$gan_dir"; mkdir -p "$gan_dir"; printf '%s\n' "$sig" >"$gan_dir/.settings"
+        # A fresh start: only the files training writes go (never anything else in the dir).
+        rm -f "$gan_dir/checkpoint.pt" "$gan_dir/settings.txt" "$gan_dir/loss_log.csv" "$gan_dir/.done"
+        printf '%s\n' "$sig" >"$gan_dir.settings"
       fi
       run_cmd=$gan_cmd run_logged "$exp/log/tsrirgan_train.log" ts-rirgan-train --real="$rirs/real_train/rir_list" \
         --synthetic="$rirs/gas_train/rir_list" --steps="$gan_steps" --width="$gan_width" \
@@ -391,8 +401,8 @@ if [ $stage -le 5 ] && [ $stop_stage -ge 5 ]; then
       in=$rirs/${input}_$split; out=$rirs/${set}_$split
       require "$in/rir_list"
       # The input set's identity (its .done, which chains back to the real RIRs) and the model's.
-      if [ "$op" = eq ]; then model_sig="$(cat "$exp/eq/.done" 2>/dev/null) $(md5sum <"$conf/rir-eq-apply.conf")"; else model_sig=$gan_sig; fi
-      sig="$op seed=$seed $(cat "$in/.done" 2>/dev/null | md5sum) $model_sig"
+      if [ "$op" = eq ]; then model_sig="$(content_of "$exp/eq/.done") $(md5sum <"$conf/rir-eq-apply.conf")"; else model_sig=$gan_sig; fi
+      sig="$op seed=$seed $(content_of "$in/.done" | md5sum) $model_sig"
       if is_done "$out/.done" "$sig"; then continue; fi
       if [ "$op" = eq ]; then
         run_logged "$exp/log/make_${set}_$split.log" rir-eq apply --config="$conf/rir-eq-apply.conf" --seed="$seed" --num-threads="$num_threads" \
@@ -465,7 +475,7 @@ if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
     if [ ! -s "$in/reco2dur" ] || [ "$(count "$in/reco2dur")" -ne "$(count "$in/wav.scp")" ]; then
       run_logged "$exp/log/reco2dur_$(basename "$in").log" wav-to-duration "scp:$in/wav.scp" "ark,t:$in/reco2dur"
     fi
-    sig="snrs=$snrs seed=$seed wavs=$write_wavs $(cat "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" "$conf/reverberate.conf" 2>/dev/null | md5sum)"
+    sig="snrs=$snrs seed=$seed wavs=$write_wavs $(content_of "$in/wav.scp" "$rir_list" "$(dirname "$rir_list")/.done" "$data/noise/noise_list" "$conf/reverberate.conf" | md5sum)"
     local name; name=$(basename "$out")
     if ! is_done "$exp/farfield/$name.done" "$sig"; then
       [ "$write_wavs" = true ] && wavs=(--write-wavs "$data/wav/$name")
@@ -509,7 +519,8 @@ if [ $stage -le 8 ] && [ $stop_stage -ge 8 ]; then
           --lm-dir "$exp/kaldi/lm" --train "$tr" --dev "$data/dev_clean_rvb_real" --test "$data/test_clean_rvb_real" \
           "$exp/kaldi/$s"
       done
-      table2=$(local/collect_wer.sh --sets "$train_sets" --test-set test_farfield "$exp/kaldi")
+      table2=$(local/collect_wer.sh --sets "$train_sets" --test-set test_farfield "$exp/kaldi") ||
+        die "local/collect_wer.sh could not collect the WERs of $exp/kaldi (see the messages above)"
       title="WER (%) on the real far-field test set (test-clean ⊛ real test RIRs + noise)"
       ;;
     proxy)

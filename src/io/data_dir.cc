@@ -75,8 +75,24 @@ bool is_utf8(const std::string& s) {
 
 }  // namespace
 
+// One CRLF policy (docs/robustness.md): a data dir's tables with DOS line endings are an error
+// wherever a program reads the data dir, as validate-data-dir reports them: Kaldi's awk/perl scripts
+// keep the '\r' in the last field (speaker "spk1\r", file "a.wav\r"). RIR and noise lists are
+// read as Kaldi's reverberate_data_dir.py reads them (Python's split() drops the '\r').
+static void reject_dos_line_endings(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r')
+      throw Error(located(path, n, "carriage return at the end of the line (DOS line endings; convert with dos2unix)"));
+  }
+}
+
 DataDir read_data_dir(const std::string& dir) {
   if (!fs::is_directory(dir)) throw Error(dir + ": not a directory");
+  for (const char* name : {"wav.scp", "utt2spk", "spk2utt", "text", "segments", "utt2uniq", "reco2file_and_channel"}) {
+    if (fs::exists(join(dir, name))) reject_dos_line_endings(join(dir, name));
+  }
   DataDir d;
   const std::string wav = join(dir, "wav.scp"), u2s = join(dir, "utt2spk");
   if (!fs::exists(wav)) throw Error(dir + ": no wav.scp");

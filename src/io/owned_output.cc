@@ -230,8 +230,8 @@ void check_claim(const std::string& dir) {
   const fs::file_status st = fs::status(dir, ec);
   if (!fs::exists(st)) return;
   if (!fs::is_directory(st)) throw Error("output directory " + dir + " exists and is not a directory");
-  if (fs::exists(marker_path(dir))) return;
   remove_dead_staging(dir);
+  if (fs::exists(marker_path(dir))) return;
   std::vector<std::string> others;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
@@ -286,6 +286,12 @@ void check_name(const std::string& dir, const Marker& marker, const std::string&
                 (owner == "-" ? "" : " run for " + owner) + ": replacing it would change an output that " +
                 "something else may point at; " + way_out(dir));
   }
+  // Ours, but changed since it was written (edited, or replaced by the user): theirs now.
+  long long size = 0, mtime = 0;
+  if (e.size >= 0 && stat_file(path, &size, &mtime) && (size != e.size || mtime != e.mtime_ns)) {
+    throw Error(path + " was written by " + describe_writer(e) + " but has changed since (" + kOwnedMarkerName +
+                " records its size and time); it is left alone: " + way_out(dir));
+  }
 }
 
 std::string owner_key(const std::string& owner) { return owner.empty() ? "-" : absolute_path(owner); }
@@ -312,7 +318,9 @@ OutputPolicy& output_policy() {
 }
 
 void register_output_options(CommandLine* cli) {
-  output_policy().program = cli->program();
+  // The program, not its sub-command: "rir-eq apply" and "rir-eq" write the same outputs.
+  const std::string& name = cli->program();
+  output_policy().program = name.substr(0, name.find(' '));
   cli->flag("overwrite", &output_policy().overwrite,
             "write into an output directory that tsrir did not write (or replace files another run "
             "wrote there); only files of the names this program writes are replaced, nothing is deleted");
