@@ -1,5 +1,5 @@
 // One far-field utterance: x_f = (x ⊛ h) + sum_i λ_i n_i[t + l_i], with the exact semantics of
-// Kaldi's wav-reverberate (../shared/docs/kaldi-conventions.md) plus three documented extensions:
+// Kaldi's wav-reverberate (docs/reference/kaldi-conventions.md) plus three documented extensions:
 // the SNR reference can be the full reverberant speech instead of the early part, an additive
 // signal can start at an offset into itself, and it can be looped to cover the rest of the output.
 #pragma once

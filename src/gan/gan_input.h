@@ -1,4 +1,4 @@
-// The original's input conventions (spec-digest §3.1): RIRs at 16 kHz, only the first 16384
+// The original's input conventions (docs/reference/spec-digest.md §3.1): RIRs at 16 kHz, only the first 16384
 // samples kept, shorter ones zero-padded at the end, each divided by its peak |x|.
 #pragma once
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Process-level settings that decide CPU training speed (toolchain.md pitfalls 2 and 3), the peak
+// Process-level settings that decide CPU training speed (docs/reference/toolchain.md pitfalls 2 and 3), the peak
 // memory report, and the stop-between-steps flag for SIGINT/SIGTERM.
 #pragma once
 

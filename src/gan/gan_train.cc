@@ -1,4 +1,4 @@
-// The TS-RIRGAN training loop (spec-digest §3.4-3.5): per iteration, disc_updates x [D_R step,
+// The TS-RIRGAN training loop (docs/reference/spec-digest.md §3.4-3.5): per iteration, disc_updates x [D_R step,
 // D_S step], then a G_SR step and a G_RS step, each on a fresh pair of batches.
 #include <algorithm>
 #include <ATen/autocast_mode.h>

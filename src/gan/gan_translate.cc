@@ -1,5 +1,5 @@
 // gas-to-real: runs one trained generator over a RIR set, keeping each input's id (the original's
-// shuffled loader lost the input/output pairing; spec-digest §3.6).
+// shuffled loader lost the input/output pairing; docs/reference/spec-digest.md §3.6).
 #include <c10/core/InferenceMode.h>
 
 #include <algorithm>

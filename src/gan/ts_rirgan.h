@@ -1,6 +1,6 @@
 // TS-RIRGAN (Ratnarajah et al., ASRU 2021): a 1-D CycleGAN that translates synthetic RIRs into
 // real-like ones, trained on unpaired sets. This header is torch-free; LibTorch is confined to
-// the .cc files of src/gan. Architecture, losses and optimiser follow spec-digest §3.
+// the .cc files of src/gan. Architecture, losses and optimiser follow docs/reference/spec-digest.md §3.
 #pragma once
 #include <cstdint>
 #include <string>

@@ -1,10 +1,14 @@
-// Audio files in and out: libsndfile for decoding/encoding (WAV, FLAC, Ogg Vorbis, ... any rate,
-// any channel count, int16/24/32/float), libsox's high-quality `rate` effect for resampling.
+// Audio files in: libsndfile decodes (WAV, FLAC, Ogg Vorbis, ... any rate, any channel count,
+// int16/24/32/float); resampling on request (io/resampler.h). Writing WAVs: io/wav_writer.h (both
+// headers are included here for the callers of this one).
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "io/resampler.h"
 #include "io/signal.h"
+#include "io/wav_writer.h"
 
 namespace tsrir {
 
@@ -52,40 +56,11 @@ class AudioFileReader {
   AudioFileReader& operator=(const AudioFileReader&) = delete;
 
  private:
+  struct SoundFile;  // the libsndfile handle (audio_io.cc)
   std::string name_;
-  void* file_ = nullptr;  // SNDFILE*
+  std::unique_ptr<SoundFile> file_;
   AudioInfo info_;
   long long frames_read_ = 0;
 };
-
-enum class SampleFormat { kInt16, kFloat32 };
-SampleFormat parse_sample_format(const std::string& name);  // "int16" | "float"
-
-struct AudioWriteOptions {
-  SampleFormat format = SampleFormat::kInt16;
-  // int16: Kaldi's writer truncates toward zero and clips; we round to nearest and clip, and
-  // report the clipped count through *clipped_samples when given.
-  long long* clipped_samples = nullptr;
-};
-
-// Writes a mono WAV atomically (temp + rename). `path` "-" writes to stdout.
-void write_wav(const std::string& path, const Signal& signal, const AudioWriteOptions& options = {});
-// Multichannel: channels[c][n], all the same length.
-void write_wav_channels(const std::string& path, const std::vector<std::vector<float>>& channels,
-                        double sample_rate_hz, const AudioWriteOptions& options = {});
-// Encodes to an in-memory WAV (for stdout and pipes).
-std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, double sample_rate_hz,
-                             const AudioWriteOptions& options = {});
-// The same WAV in pieces, for audio too long to hold: the 44-byte header for `frames` frames
-// (throws beyond 4 GB of data), then the samples, interleaved, appended block by block to *out
-// with encode_wav()'s conversion (int16: rounded, clipped; clipped samples added to *clipped).
-// `first_frame` only numbers a NaN/Inf frame in the error.
-std::vector<char> wav_header(size_t frames, int channels, double sample_rate_hz, SampleFormat format);
-void append_wav_frames(const float* interleaved, size_t frames, int channels, SampleFormat format,
-                       long long first_frame, std::vector<char>* out, long long* clipped);
-
-// libsox "rate -v" (very high quality, linear phase). Returns the input unchanged if rates match.
-std::vector<float> resample(const std::vector<float>& samples, double from_hz, double to_hz);
-Signal resample(const Signal& signal, double to_hz);
 
 }  // namespace tsrir

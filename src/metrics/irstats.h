@@ -1,4 +1,4 @@
-// The steps of IoSR irStats (IR-GAN copy of irStats.m; spec-digest §1.2), which produced the
+// The steps of IoSR irStats (IR-GAN copy of irStats.m; docs/reference/spec-digest.md §1.2), which produced the
 // TS-RIR paper's Table 1, reproduced literally, with MATLAB's 1-based index conventions mapped to
 // 0-based ones. Exposed one by one so each step is tested.
 #pragma once

@@ -1,5 +1,5 @@
 // Lundeby et al. (Acustica 81, 1995) noise-floor detection, as ISO 3382-1 recommends and pyrato
-// implements (spec-digest §1.4): the time where the decay meets the noise, the noise power and
+// implements (docs/reference/spec-digest.md §1.4): the time where the decay meets the noise, the noise power and
 // the late decay rate, from iterated regressions on a block-smoothed energy envelope.
 #pragma once
 #include <cstddef>

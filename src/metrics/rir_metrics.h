@@ -9,7 +9,7 @@
 //              needs 45 dB peak-to-noise, T20 35 dB, EDT 20 dB), EDT from 0..-10 dB;
 //              T60 = mean T30 of the 500 Hz and 1 kHz bands. DRR and C50 use the same
 //              noise-compensated broadband decay for their late energy.
-//   irstats -- exactly what the TS-RIR paper's Table 1 used (IoSR irStats, spec-digest §1.2):
+//   irstats -- exactly what the TS-RIR paper's Table 1 used (IoSR irStats, docs/reference/spec-digest.md §1.2):
 //              broadband peak as t0, causal 3rd-order ANSI Butterworth octaves, direct 0..-60 dB fit
 //              on the raw EDC, DRR with +-2.5 ms around the peak, CTE (= C50) from 2.5 ms before the
 //              peak to 50 ms after.

@@ -1,5 +1,5 @@
 // Test-only, independent float64 model of the documented wav-reverberate semantics
-// (../shared/docs/kaldi-conventions.md, spec-digest §4.5) plus tsrir's documented extensions,
+// (docs/reference/kaldi-conventions.md, docs/reference/spec-digest.md §4.5) plus tsrir's documented extensions,
 // and generators of test signals. Shares no code with src/augment.
 #pragma once
 #include <cstdint>

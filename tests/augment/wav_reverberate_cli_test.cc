@@ -176,7 +176,7 @@ TEST_F(WavReverberateCli, NoiseAtAnotherRateIsResampled) {
   EXPECT_LE(worst, 1.0);
 }
 
-// wav.scp lines exactly as Kaldi's reverberate_data_dir.py writes them (kaldi-conventions.md),
+// wav.scp lines exactly as Kaldi's reverberate_data_dir.py writes them (docs/reference/kaldi-conventions.md),
 // run through bash with our bin directory first on PATH, as compute-mfcc-feats would run them.
 TEST_F(WavReverberateCli, KaldiScriptPipesRunUnchanged) {
   const std::string path = "PATH=" + std::string(TSRIR_BIN_DIR) + ":$PATH ";

@@ -1,5 +1,5 @@
 // Unit tests of the TS-RIRGAN building blocks against float64 references written from the
-// TensorFlow definitions (spec-digest §3.7), plus parameter counts, optimiser and checkpoints.
+// TensorFlow definitions (docs/reference/spec-digest.md §3.7), plus parameter counts, optimiser and checkpoints.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -10,39 +10,18 @@
 #include <sstream>
 
 #include "synthetic_rirs.h"
+#include "test_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ProgramRun {
-  int status;
-  std::string out, err;
-};
+using ProgramRun = tsrir_test::CommandResult;
+using tsrir_test::slurp;
 
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-class RirMetricsCli : public ::testing::Test {
+class RirMetricsCli : public tsrir_test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rir_metrics_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  ProgramRun run(const std::string& args) {
-    const std::string out = (dir_ / "stdout").string(), err = (dir_ / "stderr").string();
-    const std::string cmd = std::string(TSRIR_BIN_DIR) + "/rir-metrics " + args + " >" + out + " 2>" + err;
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(out), slurp(err)};
-  }
+  ProgramRun run(const std::string& args) { return tsrir_test::run_command(tsrir_test::program_path("rir-metrics") + " " + args); }
 
   // Minimal IEEE-float WAV writer, independent of the toolkit's (it must be able to write NaN).
   std::string wav(const std::string& name, const std::vector<std::vector<float>>& channels, int rate = 16000) {
@@ -86,7 +65,6 @@ class RirMetricsCli : public ::testing::Test {
     return path;
   }
 
-  fs::path dir_;
 };
 
 std::vector<std::string> lines(const std::string& s) {

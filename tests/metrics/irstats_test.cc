@@ -1,4 +1,4 @@
-// The irstats definition, one irStats.m step at a time (spec-digest §1.2), then end to end.
+// The irstats definition, one irStats.m step at a time (docs/reference/spec-digest.md §1.2), then end to end.
 #include "metrics/irstats.h"
 
 #include <gtest/gtest.h>

@@ -24,7 +24,7 @@ double analog_bandpass_magnitude(int order, double low_hz, double high_hz, doubl
 }
 
 TEST(OctaveFilter, AnsiEdgesMatchOctdsgnValuesAt16k) {
-  // spec-digest §1.2: at 16 kHz the 500 Hz band is 358.9-696.5 Hz, the 1 kHz band 717.8-1393.1 Hz.
+  // docs/reference/spec-digest.md §1.2: at 16 kHz the 500 Hz band is 358.9-696.5 Hz, the 1 kHz band 717.8-1393.1 Hz.
   const BandEdgesHz e500 = ansi_octave_edges_hz(500.0, 3);
   const BandEdgesHz e1k = ansi_octave_edges_hz(1000.0, 3);
   EXPECT_NEAR(e500.low_hz, 358.9, 0.05);

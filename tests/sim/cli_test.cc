@@ -11,38 +11,23 @@
 #include "io/audio_io.h"
 #include "io/kaldi_lists.h"
 #include "sim/room_list.h"
+#include "test_support.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-class SimCli : public ::testing::Test {
+class SimCli : public tsrir_test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("tsrir_simcli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write_text(const std::string& name, const std::string& text) const {
-    std::ofstream(path(name), std::ios::binary) << text;
-  }
-  static std::string read_file(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
+  static std::string read_file(const std::string& p) { return tsrir_test::slurp(p); }
   // Runs a program from the build's bin dir; returns its exit status, stderr in *err.
   int run(const std::string& program, const std::string& args, std::string* err = nullptr) const {
-    const std::string err_path = path("stderr.txt");
-    const std::string cmd = std::string(TSRIR_BIN_DIR) + "/" + program + " " + args + " > " + path("stdout.txt") +
-                            " 2> " + err_path;
-    const int status = std::system(cmd.c_str());
-    if (err) *err = read_file(err_path);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const tsrir_test::CommandResult r = tsrir_test::run_command(tsrir_test::program_path(program) + " " + args);
+    if (err) *err = r.err;
+    last_out_ = r.out;
+    return r.status;
   }
-  fs::path dir_;
+  mutable std::string last_out_;  // stdout of the last run()
 };
 
 const char* kRooms =
@@ -55,12 +40,12 @@ const char* kRooms =
 TEST_F(SimCli, HelpExitsZeroWithExample) {
   std::string err;
   ASSERT_EQ(run("rir-simulate", "--help", &err), 0);
-  const std::string out = read_file(path("stdout.txt")) + err;
+  const std::string out = last_out_ + err;
   EXPECT_NE(out.find("Example"), std::string::npos);
   EXPECT_NE(out.find("absorption.walls"), std::string::npos);
   EXPECT_NE(out.find("gas = ism+diffuse"), std::string::npos);
   ASSERT_EQ(run("rir-room-list", "--help", &err), 0);
-  EXPECT_NE((read_file(path("stdout.txt")) + err).find("r3vival"), std::string::npos);
+  EXPECT_NE((last_out_ + err).find("r3vival"), std::string::npos);
 }
 
 TEST_F(SimCli, WritesWavsAndKaldiLists) {

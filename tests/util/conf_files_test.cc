@@ -2,15 +2,14 @@
 // options exist and their values parse. A program given only --config stops at its arguments
 // ("wrong number of arguments"), which it checks after reading the config file, so reaching that
 // error proves the file was accepted. A new conf file must be added to the table below.
-#include <gtest/gtest.h>
-
-#include <array>
-#include <cstdio>
 #include <dirent.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <map>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "test_support.h"
 
 namespace {
 
@@ -24,16 +23,7 @@ const std::map<std::string, std::string> kReaders = {
     {"reverberate.conf", "reverberate-data"},
 };
 
-std::string slurp(const std::string& path) {
-  std::string s;
-  if (FILE* f = std::fopen(path.c_str(), "rb")) {
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) s.append(buf.data(), n);
-    std::fclose(f);
-  }
-  return s;
-}
+using tsrir_test::slurp;
 
 struct Result {
   int status;
@@ -41,11 +31,8 @@ struct Result {
 };
 
 Result run(const std::string& command) {
-  const std::string err_path = "/tmp/tsrir_conf_test_" + std::to_string(getpid()) + ".err";
-  const int rc = std::system((command + " >/dev/null 2>" + err_path).c_str());
-  const std::string err = slurp(err_path);
-  std::remove(err_path.c_str());
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, err};
+  const tsrir_test::CommandResult r = tsrir_test::run_command(command);
+  return {r.status, r.err};
 }
 
 std::string reader_of(const std::string& file) {
@@ -84,29 +71,19 @@ TEST(ConfFiles, EveryConfFileParsesWithItsProgram) {
 
 TEST(ConfFiles, AMisspelledOptionInAConfFileIsCaught) {
   // The check above can fail: a conf file with an unknown option does not reach the arguments.
-  const std::string path = "/tmp/tsrir_conf_test_" + std::to_string(getpid()) + ".conf";
-  if (FILE* f = std::fopen(path.c_str(), "w")) {
-    std::fputs("# a typo\n--definiton=irstats\n", f);
-    std::fclose(f);
-  }
+  tsrir_test::ScratchDir scratch;
+  const std::string path = scratch.write("typo.conf", "# a typo\n--definiton=irstats\n");
   const Result r = run(kBin + "/rir-metrics --config=" + path);
-  std::remove(path.c_str());
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.err.find(path + ":2: unknown option '--definiton'"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("wrong number of arguments"), std::string::npos) << r.err;
 }
 
 TEST(ConfFiles, AliasesAndAConfigFileGiveTheSameRirsAsTheOptions) {
-  char tmpl[] = "/tmp/tsrir_conf_alias_XXXXXX";
-  const std::string dir = mkdtemp(tmpl);
-  if (FILE* f = std::fopen((dir + "/rooms.txt").c_str(), "w")) {
-    std::fputs("r1 room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2 t60=0.4\n", f);
-    std::fclose(f);
-  }
-  if (FILE* f = std::fopen((dir + "/sim.conf").c_str(), "w")) {
-    std::fputs("# as the options of run a\n--sample-rate=8000\n--seed=-5\n--length=0.25\n--format=float\n", f);
-    std::fclose(f);
-  }
+  tsrir_test::ScratchDir scratch;
+  const std::string dir = scratch.dir().string();
+  scratch.write("rooms.txt", "r1 room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2 t60=0.4\n");
+  scratch.write("sim.conf", "# as the options of run a\n--sample-rate=8000\n--seed=-5\n--length=0.25\n--format=float\n");
   const std::string sim = kBin + "/rir-simulate ";
   const std::string rooms = " " + dir + "/rooms.txt ";
   ASSERT_EQ(run(sim + "--sample-rate=8000 --seed=-5 --length=0.25 --format=float" + rooms + dir + "/a").status, 0);
@@ -119,5 +96,4 @@ TEST(ConfFiles, AliasesAndAConfigFileGiveTheSameRirsAsTheOptions) {
   EXPECT_EQ(a, slurp(dir + "/c/r1.wav"));
   EXPECT_NE(a, slurp(dir + "/d/r1.wav"));  // the command line overrides the file's seed
   EXPECT_EQ(slurp(dir + "/d/r1.wav").size(), a.size());
-  std::system(("rm -rf '" + dir + "'").c_str());
 }

@@ -2,10 +2,7 @@
 // options, Kaldi config files with the command line overriding them, and errors that end in a hint.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <fstream>
-#include <unistd.h>
-
+#include "test_support.h"
 #include "util/cli.h"
 #include "util/config_file.h"
 #include "util/error.h"
@@ -49,22 +46,7 @@ struct ToyOptions {
   }
 };
 
-class TempDir {
- public:
-  TempDir() {
-    char tmpl[] = "/tmp/tsrir_options_test_XXXXXX";
-    path_ = mkdtemp(tmpl);
-  }
-  ~TempDir() { std::system(("rm -rf '" + path_ + "'").c_str()); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = path_ + "/" + name;
-    std::ofstream(p) << text;
-    return p;
-  }
-
- private:
-  std::string path_;
-};
+using TempDir = tsrir_test::ScratchDir;
 
 std::vector<std::string> parse(ToyOptions* o, const std::vector<std::string>& args, int min_pos = 0, int max_pos = -1) {
   CommandLine cl("toy", "toy [options] <in>\ne.g.: toy --count=2 in.scp\n");

@@ -1,0 +1,149 @@
+#include "io/wav_writer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <iostream>
+
+#include "io/atomic_output.h"
+#include "util/error.h"
+
+namespace tsrir {
+namespace {
+
+void put_u32(std::vector<char>& b, uint32_t v) {
+  for (int i = 0; i < 4; ++i) b.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+void put_u16(std::vector<char>& b, uint16_t v) {
+  b.push_back(static_cast<char>(v & 0xff));
+  b.push_back(static_cast<char>(v >> 8));
+}
+
+// One sample; returns false for NaN/Inf (nothing appended).
+inline bool put_sample(std::vector<char>& b, float v, bool is_float, long long* clipped) {
+  if (!std::isfinite(v)) return false;
+  if (is_float) {
+    uint32_t u;
+    std::memcpy(&u, &v, 4);
+    put_u32(b, u);
+  } else {
+    // Round to nearest in float (exact for |v| < 2^8) and clip; Kaldi truncates toward zero.
+    float s = std::nearbyint(v * 32768.0f);
+    if (s > 32767.0f || s < -32768.0f) {
+      ++*clipped;
+      s = std::clamp(s, -32768.0f, 32767.0f);
+    }
+    put_u16(b, static_cast<uint16_t>(static_cast<int16_t>(s)));
+  }
+  return true;
+}
+
+constexpr uint16_t kWaveFormatPcm = 1;
+constexpr uint16_t kWaveFormatIeeeFloat = 3;
+
+}  // namespace
+
+SampleFormat parse_sample_format(const std::string& name) {
+  if (name == "int16") return SampleFormat::kInt16;
+  if (name == "float" || name == "float32") return SampleFormat::kFloat32;
+  throw Error("unknown sample format '" + name + "' (expected int16 or float)");
+}
+
+std::vector<char> wav_header(size_t frames, int channels, double sample_rate_hz, SampleFormat format) {
+  if (channels <= 0 || channels > 65535) throw Error("cannot write audio with " + std::to_string(channels) + " channels");
+  if (!(sample_rate_hz > 0) || sample_rate_hz > 4294967295.0) throw Error("cannot write audio: bad sample rate");
+  const uint16_t nch = static_cast<uint16_t>(channels);
+  const bool is_float = format == SampleFormat::kFloat32;
+  const uint16_t bytes_per_sample = is_float ? 4 : 2;
+  const uint64_t data_bytes = static_cast<uint64_t>(frames) * nch * bytes_per_sample;
+  if (data_bytes > 0xFFFFFFFFull - 64) throw Error("cannot write audio: longer than a WAV file can hold (4 GB)");
+  if (is_float && frames > 0xFFFFFFFFull) throw Error("cannot write audio: too many frames for a WAV fact chunk");
+  // Non-PCM data needs the fmt chunk's cbSize field (18 bytes) and a fact chunk with the frame count.
+  const uint32_t fmt_bytes = is_float ? 18 : 16;
+  const uint32_t fact_chunk_bytes = is_float ? 12 : 0;
+  std::vector<char> b;
+  b.reserve(58);
+  b.insert(b.end(), {'R', 'I', 'F', 'F'});
+  put_u32(b, static_cast<uint32_t>(4 + (8 + fmt_bytes) + fact_chunk_bytes + 8 + data_bytes));
+  b.insert(b.end(), {'W', 'A', 'V', 'E', 'f', 'm', 't', ' '});
+  put_u32(b, fmt_bytes);
+  put_u16(b, is_float ? kWaveFormatIeeeFloat : kWaveFormatPcm);
+  put_u16(b, nch);
+  const uint32_t rate = static_cast<uint32_t>(std::lround(sample_rate_hz));
+  put_u32(b, rate);
+  put_u32(b, rate * nch * bytes_per_sample);
+  put_u16(b, static_cast<uint16_t>(nch * bytes_per_sample));
+  put_u16(b, static_cast<uint16_t>(8 * bytes_per_sample));
+  if (is_float) {
+    put_u16(b, 0);  // cbSize: no extension
+    b.insert(b.end(), {'f', 'a', 'c', 't'});
+    put_u32(b, 4);
+    put_u32(b, static_cast<uint32_t>(frames));
+  }
+  b.insert(b.end(), {'d', 'a', 't', 'a'});
+  put_u32(b, static_cast<uint32_t>(data_bytes));
+  return b;
+}
+
+void append_wav_frames(const float* interleaved, size_t frames, int channels, SampleFormat format,
+                       long long first_frame, std::vector<char>* out, long long* clipped) {
+  const bool is_float = format == SampleFormat::kFloat32;
+  const size_t count = frames * static_cast<size_t>(channels);
+  out->reserve(out->size() + count * (is_float ? 4 : 2));
+  long long clipped_here = 0;
+  for (size_t i = 0; i < count; ++i) {
+    if (!put_sample(*out, interleaved[i], is_float, &clipped_here))
+      throw Error("cannot write audio: NaN or Inf sample at frame " +
+                  std::to_string(first_frame + static_cast<long long>(i / static_cast<size_t>(channels))));
+  }
+  if (clipped) *clipped += clipped_here;
+}
+
+std::vector<char> encode_wav(const std::vector<std::vector<float>>& channels, double sample_rate_hz,
+                             const AudioWriteOptions& options) {
+  if (channels.empty()) throw Error("cannot write audio with no channels");
+  const size_t frames = channels[0].size();
+  for (const auto& c : channels)
+    if (c.size() != frames) throw Error("cannot write audio: channels differ in length");
+  const int nch = static_cast<int>(channels.size());
+  std::vector<char> b = wav_header(frames, nch, sample_rate_hz, options.format);
+  b.reserve(b.size() + frames * nch * (options.format == SampleFormat::kFloat32 ? 4 : 2));
+  long long clipped = 0;
+  if (nch == 1) {
+    append_wav_frames(channels[0].data(), frames, 1, options.format, 0, &b, &clipped);
+  } else {
+    // Interleaved a block at a time: no second copy of the whole signal.
+    constexpr size_t kBlockFrames = 4096;
+    std::vector<float> block;
+    for (size_t start = 0; start < frames; start += kBlockFrames) {
+      const size_t n = std::min(kBlockFrames, frames - start);
+      block.resize(n * nch);
+      for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < nch; ++c) block[i * nch + c] = channels[c][start + i];
+      append_wav_frames(block.data(), n, nch, options.format, static_cast<long long>(start), &b, &clipped);
+    }
+  }
+  if (options.clipped_samples) *options.clipped_samples = clipped;
+  return b;
+}
+
+void write_wav_channels(const std::string& path, const std::vector<std::vector<float>>& channels,
+                        double sample_rate_hz, const AudioWriteOptions& options) {
+  std::vector<char> bytes = encode_wav(channels, sample_rate_hz, options);
+  if (path == "-") {
+    std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::cout.flush();
+    if (!std::cout) throw Error("error writing audio to standard output");
+    return;
+  }
+  AtomicTextFile out(path);
+  out.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.commit();
+}
+
+void write_wav(const std::string& path, const Signal& signal, const AudioWriteOptions& options) {
+  write_wav_channels(path, {signal.samples}, signal.sample_rate_hz, options);
+}
+
+}  // namespace tsrir
