@@ -406,6 +406,14 @@ TEST_F(Lists, NoiseListsAsKaldiReadsThem) {
   } catch (const tsrir::Error& e) {
     EXPECT_NE(std::string(e.what()).find(commented + ":1"), std::string::npos) << e.what();
   }
+  const std::string unknown = put("unknown", "--noise-id n1 --noise-type diffuse n1.wav\n");
+  try {
+    tsrir::load_augment_sources({rirs}, {unknown}, 0.3, 0.3);
+    FAIL() << "an unknown noise type was accepted";
+  } catch (const tsrir::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(unknown + ":1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("diffuse"), std::string::npos) << e.what();
+  }
   // Point sources: smoothed within their set, scaled by the set weight, normalised over all point
   // sources. Isotropic: per room, set weights and smoothing not applied.
   const std::string set1 = put("set1",
