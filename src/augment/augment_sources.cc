@@ -88,7 +88,11 @@ AugmentSources load_augment_sources(const std::vector<std::string>& rir_set_para
       c.set = s;
       c.given_probability = e.probability;
       const NoiseType* type = find_noise_type(c.noise_type);
-      if (!type) throw Error(c.where + ": unknown --noise-type '" + c.noise_type + "'");
+      if (!type) {
+        std::string known;
+        for (const auto& t : noise_types()) known += (known.empty() ? "" : ", ") + t->name();
+        throw Error(c.where + ": unknown --noise-type '" + c.noise_type + "' (known: " + known + ")");
+      }
       type->check(c, rooms);
       warn_duplicate(&noise_seen, "noise", c.id, c.where);
       sources.noises.push_back(std::move(c));

@@ -13,6 +13,7 @@
 #     with --pipe-program=Kaldi's wav-reverberate, accepted and within 8 LSB of ours.
 # Usage: kaldi_parity_test.sh <tsrir-bin-dir>     (env: KALDI_ROOT; KEEP=1 keeps the work dir)
 set -euo pipefail
+export PYTHONDONTWRITEBYTECODE=1   # nothing written into the source tree
 bin=$(cd "$1" && pwd)
 here=$(cd "$(dirname "$0")" && pwd)
 if [ -z "${KALDI_ROOT:-}" ]; then
