@@ -2,6 +2,8 @@
 // per set: which effects were detected, with their statistics (for sweeps; see power_sweep.sh).
 //   diagnose_probe --effects=a,b --seed=N [--count=24] [--fix=name=value,...] [--highpass-hz=F]
 //                  [--position-error-m=E] [--size-error=E] [--pre-align-ms=T] [--verbose]
+//                  [--strength=K]   (one effect: its hidden parameter set so that its nominal
+//                                    effect size is K x the detector's threshold, see below)
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -10,6 +12,8 @@
 #include <string>
 
 #include "diagnose/diagnose.h"
+#include "diagnose/rir_features.h"
+#include "measured_rir_generator.h"
 #include "hidden_effects.h"
 #include "util/strings.h"
 
@@ -20,6 +24,7 @@ int main(int argc, char** argv) {
   uint64_t seed = 1;
   size_t count = 24;
   bool verbose = false;
+  double strength = -1.0;
   testing::HiddenOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -48,6 +53,8 @@ int main(int argc, char** argv) {
       options.size_error = std::stod(value("--size-error="));
     } else if (!value("--pre-align-ms=").empty()) {
       options.pre_align_ms = std::stod(value("--pre-align-ms="));
+    } else if (!value("--strength=").empty()) {
+      strength = std::stod(value("--strength="));
     } else if (a == "--verbose") {
       verbose = true;
     } else {
@@ -56,6 +63,59 @@ int main(int argc, char** argv) {
     }
   }
   const auto rooms = testing::make_test_rooms(count, 77 + seed);
+  if (strength >= 0.0) {
+    if (effects.size() != 1) { std::cerr << "--strength needs exactly one effect\n"; return 2; }
+    const std::string e = *effects.begin();
+    const double k = strength;
+    const testing::TrueRoom stated = testing::true_room_from(rooms.front());
+    if (e == "time_offset") {
+      options.fixed["latency_ms"] = 0.6 * k;                     // threshold 0.6 ms
+    } else if (e == "band_absorption") {
+      // The 1 kHz band's Eyring decay rate 1.08^k times the stated one (threshold 8 %).
+      const double a = rooms.front().absorption[0][4];
+      for (int b = 0; b < kNumOctaveBands; ++b) options.fixed["absorption_factor_" + std::to_string(b)] = 1.0;
+      options.fixed["absorption_factor_4"] = (1.0 - std::pow(1.0 - a, std::pow(1.08, k))) / a;
+    } else if (e == "air_absorption") {
+      // 20 C, 30 % RH, attenuation scaled so that the 4 kHz decay rate rises by 1.05^k (threshold 5 %).
+      options.fixed["temperature_c"] = 20.0;
+      options.fixed["humidity_percent"] = 30.0;
+      const double base = testing::test_eyring_rate_per_s(stated)[6];
+      const double per_unit = testing::test_air_attenuation_db_per_m(4000.0, 20.0, 30.0) * std::log(10.0) / 10.0 *
+                              stated.speed_of_sound_m_s;
+      options.fixed["air_scale"] = (std::pow(1.05, k) - 1.0) * base / per_unit;
+    } else if (e == "transducer_response") {
+      // One peaking filter at 1 kHz whose octave level departs k dB from the mean over the
+      // direct-sound bands the detector uses (threshold 1 dB).
+      auto shape = [&](double g) {
+        const std::vector<testing::TestBiquad> chain = {testing::test_peaking(1000.0, g, 1.4, 16000.0)};
+        double sum = 0.0;
+        int m = 0;
+        for (int b = 0; b < kNumOctaveBands; ++b) {
+          if (!diagnose::direct_band_reliable(b, 16000.0)) continue;
+          sum += testing::test_cascade_octave_gain_db(chain, kOctaveCentersHz[b], 16000.0);
+          ++m;
+        }
+        return testing::test_cascade_octave_gain_db(chain, 1000.0, 16000.0) - sum / m;
+      };
+      double lo = 0.0, hi = 40.0;
+      for (int i = 0; i < 60; ++i) ((shape(0.5 * (lo + hi)) < k) ? lo : hi) = 0.5 * (lo + hi);
+      options.fixed["transducer_peak_db"] = 0.5 * (lo + hi);
+    } else if (e == "noise_floor") {
+      // White noise at 0.0015 k x the clean RIR's mean power over its last 10 %: calibrated
+      // (seed 1, 48 RIRs) so that at k = 1 the last 30 % decays 6.2 dB less than simulated (the
+      // detector's effect-size threshold is 6 dB; 0.0007 gave 4.6 dB, 0.003 7.9 dB).
+      options.fixed["noise_re_tail"] = 0.0015 * k;
+    } else if (e == "room_modes") {
+      // Not threshold-calibrated: modes 20 log10(k) dB re the generator's nominal modal level,
+      // decaying 2x the room's low-band T60.
+      options.fixed["mode_gain_db"] = 20.0 * std::log10(std::max(k, 1e-3));
+      options.fixed["mode_decay_factor"] = 2.0;
+    } else if (e == "diffuse_scattering") {
+      // Not threshold-calibrated: scattering 0.1 + 0.85 k / 3 (k = 3: 0.95; stated 0.1).
+      options.fixed["scattering"] = 0.1 + 0.85 * std::min(k, 3.0) / 3.0;
+    }
+    for (const auto& [name, v] : options.fixed) std::cout << "fixed " << name << " = " << v << "\n";
+  }
   const auto set = testing::make_hidden_set(rooms, effects, seed, 16000.0, 1.0, options);
   if (verbose) {
     // Energy envelope of the first "measured" RIR (dB per 50 ms window) against the baseline.

@@ -350,6 +350,17 @@ void write_findings_json(const Diagnosis& d, std::ostream& out) {
   for (const std::string& id : d.eval_ids) w.value(id);
   w.end_array();
   w.end_object();
+  w.key("thresholds").begin_object();
+  const DetectionThresholds& t = kThresholds;
+  w.field("alpha", t.alpha).field("time_offset_min_ms", t.time_offset_min_ms);
+  w.field("time_offset_null_mads", t.time_offset_null_mads).field("time_offset_rirs_rate", t.time_offset_rirs_rate);
+  w.field("noise_floor_min_db", t.noise_floor_min_db).field("noise_floor_flat_db", t.noise_floor_flat_db);
+  w.field("room_modes_min_db", t.room_modes_min_db).field("scattering_min_echo_density", t.scattering_min_echo_density);
+  w.field("transducer_min_db", t.transducer_min_db).field("transducer_min_correlation", t.transducer_min_correlation);
+  w.field("band_min_rate_ratio", t.band_min_rate_ratio).field("air_min_top_rate_ratio", t.air_min_top_rate_ratio);
+  w.field("air_max_chi2_fraction", t.air_max_chi2_fraction).field("air_min_chi2_improvement", t.air_min_chi2_improvement);
+  w.field("gain_alpha", kGainAlpha);
+  w.end_object();
   w.key("set").begin_object();
   w.field("num_rirs", d.num_rirs).field("sample_rate_hz", d.sample_rate_hz).field("seconds", d.seconds);
   w.end_object();

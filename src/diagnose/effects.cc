@@ -49,7 +49,7 @@ MeanDecision mean_rule(const std::vector<double>& d, double min_effect, int sign
   MeanDecision r;
   r.test = t_test(d);
   const bool direction_ok = sign == 0 || (sign > 0 ? r.test.mean > 0 : r.test.mean < 0);
-  r.fires = r.test.n >= 3 && direction_ok && std::abs(r.test.mean) > min_effect && r.test.p_two_sided < kAlpha;
+  r.fires = r.test.n >= 3 && direction_ok && std::abs(r.test.mean) > min_effect && r.test.p_two_sided < kThresholds.alpha;
   return r;
 }
 
@@ -67,7 +67,7 @@ Finding decide_mean(const std::string& effect, const std::vector<double>& d, con
   f.confidence = confidence_of(m.test.p_two_sided, m.test.mean, min_effect, f.detected);
   f.evidence = what + ": measured - simulated = " + num(m.test.mean) + " +- " + num(m.test.standard_error) + " " + unit +
                " over " + std::to_string(m.test.n) + " RIRs (t = " + num(m.test.t) + ", p = " + num(m.test.p_two_sided, 2) +
-               "; threshold " + num(min_effect) + " " + unit + " at p < " + num(kAlpha) + "); seed-vs-seed " +
+               "; threshold " + num(min_effect) + " " + unit + " at p < " + num(kThresholds.alpha) + "); seed-vs-seed " +
                num(null.test.mean) + " " + unit + (null.fires ? " (null also fires: statistic not trusted)" : "") + ".";
   return f;
 }
@@ -142,14 +142,14 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
     const std::vector<double> e = paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.onset_s * 1e3; });
     // 0.6 ms = 0.2 m of path: stated positions are rarely better than +-0.1 m per coordinate
     // (up to 0.17 m in distance), and an offset smaller than that is indistinguishable from them.
-    const double thr = std::max(0.6, 5.0 * median_abs_deviation(e));
+    const double thr = std::max(kThresholds.time_offset_min_ms, kThresholds.time_offset_null_mads * median_abs_deviation(e));
     auto rule = [&](const std::vector<double>& x, size_t* k, double* p, double* med) {
       std::vector<double> a;
       *k = 0;
       for (double v : x) { a.push_back(std::abs(v)); *k += std::abs(v) > thr; }
-      *p = binomial_upper_p(*k, x.size(), 0.05);
+      *p = binomial_upper_p(*k, x.size(), kThresholds.time_offset_rirs_rate);
       *med = median_of(a);
-      return *p < kAlpha && *med > thr;
+      return *p < kThresholds.alpha && *med > thr;
     };
     size_t k, kn;
     double p, pn, med, medn;
@@ -170,13 +170,13 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
   // ---- noise_floor: the decay flattens at a level (stationary noise stops the late decay).
   Finding noise = decide_mean(
       "noise_floor", paired(obs.meas, obs.sim_a, [](const RirFeatures& f) { return f.late_decay_db; }),
-      paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.late_decay_db; }), 6.0, -1,
+      paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.late_decay_db; }), kThresholds.noise_floor_min_db, -1,
       "decay over the last 30 % of the file (level at 70-80 % minus 90-100 %, 500 Hz-4 kHz median)", "dB");
   {
     std::vector<double> late;
     for (const RirFeatures& f : obs.meas) late.push_back(f.late_decay_db);
     const double flat = median_of(late);
-    if (noise.detected && !(flat < 3.0)) noise.detected = false;
+    if (noise.detected && !(flat < kThresholds.noise_floor_flat_db)) noise.detected = false;
     noise.evidence += " Measured late decay (median over the set) " + num(flat) + " dB; flat below 3 dB is required.";
     if (!noise.detected) noise.confidence = std::min(noise.confidence, 0.49);
   }
@@ -184,14 +184,14 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
   // ---- room_modes: peaks at the predicted mode frequencies.
   Finding modes = decide_mean(
       "room_modes", paired(obs.meas, obs.sim_a, [](const RirFeatures& f) { return f.mode_prominence_db; }),
-      paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.mode_prominence_db; }), 0.5, +1,
+      paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.mode_prominence_db; }), kThresholds.room_modes_min_db, +1,
       "spectrum at the predicted shoebox modes above the spectrum between them (window maxima, each re the local mean level over +-10 Hz)", "dB");
 
   // ---- diffuse_scattering: early echo density.
   std::vector<double> ed_d, ed_e;
   for (const auto& [x, y] : obs.echo_density_meas_a) ed_d.push_back(x - y);
   for (const auto& [x, y] : obs.echo_density_b_a) ed_e.push_back(x - y);
-  Finding scatter = decide_mean("diffuse_scattering", ed_d, ed_e, 0.05, 0,
+  Finding scatter = decide_mean("diffuse_scattering", ed_d, ed_e, kThresholds.scattering_min_echo_density, 0,
                                 "early (5-45 ms) normalised echo density, 1-4 kHz, cross-equalised", "");
 
   // ---- transducer_response: the same spectral shape in the direct sound and the tail.
@@ -217,7 +217,7 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
       }
       return s;
     };
-    const double t_crit = t_critical(kAlpha / std::max<size_t>(1, bands.size()), std::max<double>(2.0, n - 1.0));
+    const double t_crit = t_critical(kThresholds.alpha / std::max<size_t>(1, bands.size()), std::max<double>(2.0, n - 1.0));
     auto rule = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, double* max_abs, double* corr,
                     double* p_min, int* worst, BandValues* dshape, BandValues* tshape) {
       const auto ds = shapes(x, y, true), ts = shapes(x, y, false);
@@ -233,11 +233,11 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
         dm.push_back(t.mean);
         tm.push_back((*tshape)[b]);
         if (std::abs(t.mean) > *max_abs) { *max_abs = std::abs(t.mean); *worst = b; }
-        if (std::abs(t.mean) > 1.0 && std::abs(t.t) > t_crit) any = true;
+        if (std::abs(t.mean) > kThresholds.transducer_min_db && std::abs(t.t) > t_crit) any = true;
         *p_min = std::min(*p_min, t.p_two_sided * bands.size());
       }
       *corr = correlation(dm, tm);
-      return any && *corr > 0.6;
+      return any && *corr > kThresholds.transducer_min_correlation;
     };
     double mx, corr, pmin, mxn, corrn, pminn;
     int worst, worstn;
@@ -247,14 +247,14 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
     transducer.detected = fires && !null_fires;
     transducer.statistic = mx;
     transducer.null_statistic = mxn;
-    transducer.threshold = 1.0;
+    transducer.threshold = kThresholds.transducer_min_db;
     transducer.statistic_unit = "dB";
     transducer.confidence = confidence_of(std::min(1.0, pmin), mx, 1.0, transducer.detected);
     transducer.evidence = "direct-sound spectral shape departs by up to " + num(mx) + " dB" +
                           (worst >= 0 ? " (at " + band_name(worst) + ")" : std::string()) +
                           " from the simulation (threshold 1 dB at |t| > " + num(t_crit) +
                           "), and the tail's shape correlates with it at r = " + num(corr) +
-                          " (needs > 0.6); seed-vs-seed " + num(mxn) + " dB, r = " + num(corrn) + ".";
+                          " (needs > " + num(kThresholds.transducer_min_correlation) + "); seed-vs-seed " + num(mxn) + " dB, r = " + num(corrn) + ".";
     if (summary) { summary->direct_shape_db = ds; summary->tail_shape_db = ts; }
   }
 
@@ -297,9 +297,9 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
         group_base[g][b] = median_of(r);
       }
     }
-    const double t_crit = t_critical(kAlpha / std::max<size_t>(1, tested.size() * groups.size()),
+    const double t_crit = t_critical(kThresholds.alpha / std::max<size_t>(1, tested.size() * groups.size()),
                                      std::max<double>(2.0, n / std::max<double>(1.0, groups.size()) - 1.0));
-    const double min_ratio = std::log(1.08);
+    const double min_ratio = std::log(kThresholds.band_min_rate_ratio);
     const double temp = obs.rooms.empty() ? 20.0 : obs.rooms[0].temperature_c;
     const double c = obs.rooms.empty() ? 343.0 : obs.rooms[0].speed_of_sound_m_s;
 
@@ -347,14 +347,15 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
           const OneSampleTest tr = t_test(r), t0 = t_test(raw);
           if (std::abs(tr.mean) > min_ratio && std::abs(tr.t) > t_crit) residual_significant = true;
           if (std::abs(t0.mean) > min_ratio && std::abs(t0.t) > t_crit) raw_significant = true;
-          if (std::abs(t0.mean) > std::log(1.05) && std::abs(t0.t) > t_crit) raw_significant_air = true;
+          if (std::abs(t0.mean) > std::log(kThresholds.air_min_top_rate_ratio) && std::abs(t0.t) > t_crit) raw_significant_air = true;
           if (std::abs(t0.mean) > std::abs(*worst_ratio)) { *worst_ratio = t0.mean; *worst_band = b; *worst_room = g; }
         }
       }
       const double top = tested.empty() ? 0.0 : (*air_curve)[tested.back()];
-      *air_fires = raw_significant_air && fit->scale > 0.0 && fit->chi2_fit < 0.1 * fit->chi2_zero &&
-                   fit->chi2_zero - fit->chi2_fit > 20.0 && *uniform_chi2 - fit->chi2_fit > 20.0 && !residual_significant &&
-                   top > std::log(1.05);
+      const double min_gain = kThresholds.air_min_chi2_improvement;
+      *air_fires = raw_significant_air && fit->scale > 0.0 && fit->chi2_fit < kThresholds.air_max_chi2_fraction * fit->chi2_zero &&
+                   fit->chi2_zero - fit->chi2_fit > min_gain && *uniform_chi2 - fit->chi2_fit > min_gain &&
+                   !residual_significant && top > std::log(kThresholds.air_min_top_rate_ratio);
       // With air explaining everything, the per-band refit is not needed; otherwise any band
       // that departs (raw, i.e. the refit also absorbs air) is band_absorption.
       *band_fires = *air_fires ? residual_significant : raw_significant;
@@ -375,10 +376,10 @@ std::vector<Finding> detect_effects(const SetObservations& obs, BandSummary* sum
     const double top_air = tested.empty() ? 0.0 : curve[tested.back()];
     air.statistic = top_air;
     air.null_statistic = tested.empty() ? 0.0 : curven[tested.back()];
-    air.threshold = std::log(1.05);
+    air.threshold = std::log(kThresholds.air_min_top_rate_ratio);
     air.statistic_unit = "ln(rate ratio)";
     const double p_air = chi_square_upper_p(std::max(0.0, fit.chi2_zero - fit.chi2_fit), 2.0);
-    air.confidence = confidence_of(p_air, top_air, std::log(1.05), air.detected);
+    air.confidence = confidence_of(p_air, top_air, std::log(kThresholds.air_min_top_rate_ratio), air.detected);
     std::string per_band;
     for (int b : tested) {
       per_band += (per_band.empty() ? "" : ", ") + band_name(b) + " " + num(100.0 * std::expm1(mean[b]), 2) + "%";

@@ -52,6 +52,26 @@ namespace tsrir::diagnose {
 
 constexpr double kAlpha = 1e-3;
 
+// Every threshold of the decisions above, in one place (written to findings.json as
+// "thresholds"); the prose above says why each has its value.
+struct DetectionThresholds {
+  double alpha = kAlpha;                      // per-decision p (Bonferroni over bands/rooms)
+  double time_offset_min_ms = 0.6;            // 0.2 m of path: position errors of +-0.1 m
+  double time_offset_null_mads = 5.0;         // or 5 MAD of the seed-vs-seed onset spread
+  double time_offset_rirs_rate = 0.05;        // per-RIR false-alarm rate of the binomial test
+  double noise_floor_min_db = 6.0;            // late decay this much below the simulation's
+  double noise_floor_flat_db = 3.0;           // and the measured late decay flatter than this
+  double room_modes_min_db = 0.5;             // mode prominence above the simulation's
+  double scattering_min_echo_density = 0.05;  // early echo density difference
+  double transducer_min_db = 1.0;             // direct-sound band shape departure
+  double transducer_min_correlation = 0.6;    // of the direct and tail shapes
+  double band_min_rate_ratio = 1.08;          // per-band decay-rate departure
+  double air_min_top_rate_ratio = 1.05;       // predicted top-band decay increase
+  double air_max_chi2_fraction = 0.1;         // chi-square the air curve may leave
+  double air_min_chi2_improvement = 20.0;     // over no change and over a uniform rate factor
+};
+inline constexpr DetectionThresholds kThresholds{};
+
 // The room a set-up belongs to for per-room refits: its room id when the list gives one, else its
 // dimensions and stated absorption (lines that differ only in positions share a room).
 std::string room_group(const sim::RoomSpec& room);

@@ -34,17 +34,21 @@ std::string metric_for(const std::string& effect) {
 }
 
 struct Case {
+  Case(std::string n, std::set<std::string> h, uint64_t s, testing::HiddenOptions o = testing::HiddenOptions(),
+       std::set<std::string> u = std::set<std::string>(), std::set<std::string> a = std::set<std::string>())
+      : name(std::move(n)), hidden(std::move(h)), seed(s), options(std::move(o)), unasserted(std::move(u)),
+        also_expected(std::move(a)) {}
   std::string name;
   std::set<std::string> hidden;
   uint64_t seed;
-  testing::HiddenOptions options = {};
+  testing::HiddenOptions options;
   // Effects whose detection is not asserted either way (reported): diffuse_scattering, whose
   // statistic is too weak on the independent generator (see bench/RESULTS.md), and the
   // transducer's low-frequency roll-off, which the short direct-sound window cannot resolve.
-  std::set<std::string> unasserted = {};
+  std::set<std::string> unasserted;
   // Effects expected although not hidden through the generator (pre-alignment reads as a time
   // offset, with the alignment as its parameter).
-  std::set<std::string> also_expected = {};
+  std::set<std::string> also_expected;
 };
 // ctest lists a case by its name rather than the struct's bytes.
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
@@ -205,11 +209,11 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"null_a", {}, 1}, Case{"null_b", {}, 2}, Case{"room_modes", {"room_modes"}, 3},
                       Case{"air_absorption", {"air_absorption"}, 4}, Case{"band_absorption", {"band_absorption"}, 5},
                       Case{"transducer_response", {"transducer_response"}, 6}, Case{"noise_floor", {"noise_floor"}, 7},
-                      Case{"diffuse_scattering", {"diffuse_scattering"}, 8, {}, kScatteringUnasserted},
+                      Case{"diffuse_scattering", {"diffuse_scattering"}, 8, testing::HiddenOptions(), kScatteringUnasserted},
                       Case{"time_offset", {"time_offset"}, 9},
                       Case{"modes_and_noise", {"room_modes", "noise_floor"}, 10},
                       Case{"transducer_and_offset", {"transducer_response", "time_offset"}, 11},
-                      Case{"air_and_scattering", {"air_absorption", "diffuse_scattering"}, 12, {}, kScatteringUnasserted}),
+                      Case{"air_and_scattering", {"air_absorption", "diffuse_scattering"}, 12, testing::HiddenOptions(), kScatteringUnasserted}),
     case_name);
 
 // Look-alikes: nothing of the catalog hidden (or one effect whose look-alike must not be
@@ -225,7 +229,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"room_5pct_smaller", {}, 36, size_error(-0.05)},
                       Case{"long_decay_not_noise", {"band_absorption"}, 37, long_decay()},
                       Case{"latency_not_alignment", {"time_offset"}, 38},
-                      Case{"pre_alignment_not_latency", {}, 39, pre_aligned(5.0), {}, {"time_offset"}}),
+                      Case{"pre_alignment_not_latency", {}, 39, pre_aligned(5.0), std::set<std::string>(), {"time_offset"}}),
     case_name);
 
 }  // namespace

@@ -83,8 +83,12 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
     }
     if (hi - lo >= 3.0 * transducer_scale) break;
   }
+  if (options.fixed.count("transducer_peak_db")) {
+    chain = {test_peaking(1000.0, options.fixed.at("transducer_peak_db"), 1.4, fs)};
+  }
   const double peak_to_noise_db = drawn(rng, options, "peak_to_noise_db", 35.0, 55.0);
-  const bool pink = rng.uniform() < 0.5;
+  bool pink = rng.uniform() < 0.5;
+  if (options.fixed.count("noise_re_tail")) pink = false;  // the sweeps use white noise
   const double latency_ms = drawn(rng, options, "latency_ms", 2.0, 12.0);
   const double size_factor = 1.0 + options.size_error;
 
@@ -130,6 +134,7 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
       real.air = true;
       real.air_temperature_c = air_t;
       real.air_humidity_percent = air_rh;
+      if (options.fixed.count("air_scale")) real.air_scale = options.fixed.at("air_scale");
     }
     if (effects.count("time_offset")) real.latency_s = latency_ms * 1e-3;
     if (effects.count("room_modes")) {
@@ -173,9 +178,14 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
       double p = 0.0;
       for (float v : noise) p += double(v) * v;
       const double rms = std::sqrt(p / n);
-      const double target = peak * std::pow(10.0, -peak_to_noise_db / 20.0);
+      double target = peak * std::pow(10.0, -peak_to_noise_db / 20.0);
       double energy = 0.0;
       for (float v : s.samples) energy += double(v) * v;
+      if (options.fixed.count("noise_re_tail")) {
+        double tail = 0.0;
+        for (size_t i = n - n / 10; i < n; ++i) tail += double(s.samples[i]) * s.samples[i];
+        target = std::sqrt(options.fixed.at("noise_re_tail") * tail / (n / 10));
+      }
       for (size_t i = 0; i < n; ++i) s.samples[i] += static_cast<float>(noise[i] * target / rms);
       // The noise's power per sample at its 1 kHz spectral density, re the clean RIR's energy
       // (the noise_floor extension's level_db): white noise has its mean density there; pink

@@ -42,7 +42,10 @@ struct HiddenOptions {
   double pre_align_ms = 0.0;
   // Fixed hidden parameters instead of drawn ones (names as in HiddenSet::truth, e.g.
   // "scattering", "peak_to_noise_db", "latency_ms", "mode_gain_db", "absorption_factor_3",
-  // "humidity_percent", "temperature_c", "transducer_scale" (multiplies the biquad gains)).
+  // "humidity_percent", "temperature_c", "transducer_scale" (multiplies the biquad gains)), and
+  // for the power sweeps: "air_scale" (multiplies the ISO attenuation), "transducer_peak_db" (the
+  // chain is one peaking filter at 1 kHz, Q 1.4, of this gain), "noise_re_tail" (white noise whose
+  // power per sample is this times the clean RIR's mean power over its last 10 %).
   std::map<std::string, double> fixed;
 };
 

@@ -103,13 +103,13 @@ Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng
   for (size_t k = 0; k < bins; ++k) {
     octave_interp(k * fs / ne, &lo_of[k], &w_of[k]);
     if (room.air) {
-      air_np_per_m[k] = test_air_attenuation_db_per_m(k * fs / ne, room.air_temperature_c, room.air_humidity_percent) *
+      air_np_per_m[k] = room.air_scale * test_air_attenuation_db_per_m(k * fs / ne, room.air_temperature_c, room.air_humidity_percent) *
                         std::log(10.0) / 20.0;
     }
   }
   sim::BandValues band_air_np{};
   for (int b = 0; b < kNumOctaveBands; ++b) {
-    band_air_np[b] = room.air ? test_air_attenuation_db_per_m(kOctaveCentersHz[b], room.air_temperature_c,
+    band_air_np[b] = room.air ? room.air_scale * test_air_attenuation_db_per_m(kOctaveCentersHz[b], room.air_temperature_c,
                                                               room.air_humidity_percent) * std::log(10.0) / 20.0
                               : 0.0;
   }
@@ -193,7 +193,7 @@ Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng
     const double f = k * fs / frame;
     octave_interp(f, &f_lo[k], &f_w[k]);
     const double lr = (1.0 - f_w[k]) * std::log(rate[f_lo[k]]) + f_w[k] * std::log(rate[f_lo[k] + 1]);
-    const double air = room.air ? test_air_attenuation_db_per_m(f, room.air_temperature_c, room.air_humidity_percent) *
+    const double air = room.air ? room.air_scale * test_air_attenuation_db_per_m(f, room.air_temperature_c, room.air_humidity_percent) *
                                       std::log(10.0) / 10.0 * c
                                 : 0.0;
     f_rate[k] = std::exp(lr) + air;

@@ -43,6 +43,7 @@ struct TrueRoom {
   bool air = false;                 // air absorption (ISO 9613-1) on or off
   double air_temperature_c = 20.0;
   double air_humidity_percent = 50.0;
+  double air_scale = 1.0;           // multiplies the ISO attenuation (power sweeps)
   double latency_s = 0.0;           // added to every arrival (a constant system latency)
   // Extra modal energy below the Schroeder frequency (room_modes): level re the image sources'
   // modal level and decay factor re the room's own low-band T60; gain_db < -90 = none.
