@@ -20,9 +20,9 @@ int main(int argc, char** argv) {
         "  Length: --keep-length=16000 keeps the first 16000 of the 16384 generated samples (the\n"
         "          original's generator.py); a number in [1, 16384] keeps that many; 'input' keeps the\n"
         "          input's length at 16 kHz (at most 16384).\n"
-        "  Level:  by default the generator's output as is (tanh, peak near 1 like the peak-normalised\n"
-        "          training data), as the original; --restore-level scales each output by its input's\n"
-        "          peak |x|, restoring the input's level.\n"
+        "  Level:  by default the generator's output as is (peak near 1 like the peak-normalised\n"
+        "          training data: tanh for --generator=original, input + correction for residual), as\n"
+        "          the original; --restore-level scales each output by its input's peak |x|.\n"
         "\n"
         "Usage: gas-to-real [options] --model=<model-dir-or-checkpoint> <in-rir-scp> <out-dir>\n"
         "Example:\n"
@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     cli.option("device", &o.device, "cpu or cuda (needs a LibTorch with CUDA and a GPU)");
     cli.option("num-threads", &o.num_threads, "CPU threads for LibTorch and reading");
     cli.option("precision", &o.precision,
-               "float32, or bfloat16: ~2.5x faster on CPUs with AVX512-BF16/AMX (slower without), "
+               "float32, or bfloat16: 1.8-2.3x faster (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX (slower without), "
                "output within ~1% RMS of float32");
     tsrir::register_output_options(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);

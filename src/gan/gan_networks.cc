@@ -163,7 +163,12 @@ torch::Tensor SameConvTranspose1dImpl::forward(const torch::Tensor& x) {
       .reshape({batch, out_channels_, stride_ * length});
 }
 
-GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const std::string& decoder) {
+GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const std::string& decoder,
+                             const std::string& kind) {
+  if (kind != "original" && kind != "residual") {
+    throw Error("--generator must be original or residual, got '" + kind + "'");
+  }
+  residual_ = kind == "residual";
   const int w = width;
   const int down_channels[9][2] = {{1, w},         {w, 2 * w},     {2 * w, 4 * w},
                                    {4 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w},
@@ -181,11 +186,32 @@ GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const 
     up_.push_back(register_module("upconv_" + std::to_string(i + 1),
                                   SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4, init)));
   }
+  if (residual_) {
+    // The correction starts at zero: a new residual generator is the identity.
+    torch::NoGradGuard no_grad;
+    up_.back()->weight.zero_();
+    up_.back()->bias.zero_();
+  }
 }
 
 torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
+  const torch::Tensor input = x;
   for (auto& layer : down_) x = torch::relu(layer->forward(x));
   for (size_t i = 0; i + 1 < up_.size(); ++i) x = torch::relu(up_[i]->forward(x));
+  if (residual_) {
+    // Causal correction: an RIR is silent before its direct sound, so nothing is added before
+    // the input's onset (its first sample within 20 dB of its peak, as ISO 3382's onset).
+    torch::Tensor mask;
+    {
+      torch::NoGradGuard no_grad;
+      const torch::Tensor magnitude = input.abs().to(torch::kFloat);
+      const torch::Tensor above = magnitude >= 0.1 * std::get<0>(magnitude.max(-1, true));
+      const torch::Tensor onset = above.to(torch::kFloat).argmax(-1, true);  // first maximum: first true
+      const torch::Tensor position = torch::arange(input.size(-1), onset.options()).view({1, 1, -1});
+      mask = (position >= onset).to(input.scalar_type());
+    }
+    return input + up_.back()->forward(x).to(input.scalar_type()) * mask;
+  }
   return torch::tanh(up_.back()->forward(x));
 }
 
@@ -228,8 +254,8 @@ void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
 CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   // Construction order fixes which random numbers each network's initialiser draws.
   const InitKind init = parse_init_kind(s.init);
-  g_real = Generator(s.width, s.kernel_length, init, s.decoder);
-  g_synthetic = Generator(s.width, s.kernel_length, init, s.decoder);
+  g_real = Generator(s.width, s.kernel_length, init, s.decoder, s.generator);
+  g_synthetic = Generator(s.width, s.kernel_length, init, s.decoder, s.generator);
   d_real = Discriminator(s.width, s.kernel_length, init);
   d_synthetic = Discriminator(s.width, s.kernel_length, init);
   torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
@@ -310,7 +336,8 @@ Generator load_generator(const std::string& path, const std::string& name, GanSe
   torch::serialize::InputArchive archive;
   open_archive(path, archive);
   *settings = archive_settings(archive, path);
-  Generator generator(settings->width, settings->kernel_length, InitKind::kGlorot, settings->decoder);
+  Generator generator(settings->width, settings->kernel_length, InitKind::kGlorot, settings->decoder,
+                      settings->generator);
   for (auto& item : generator->named_parameters()) {
     read_into(archive, archive_key(name, item.key()), item.value(), path);
   }

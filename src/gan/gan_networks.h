@@ -52,16 +52,26 @@ class SameConvTranspose1dImpl : public torch::nn::Module {
 TORCH_MODULE(SameConvTranspose1d);
 
 // G_SR / G_RS: 4 strided convs (w, 2w, 4w, 8w), 5 stride-1 convs (8w), 3 transposed convs
-// (16w, 8w, 4w for decoder "original"; 4w, 2w, w for "light") and a transposed conv to 1 channel
-// with tanh; ReLU elsewhere; no normalisation and no skip connections. Input and output
-// [B, 1, 16384].
+// (16w, 8w, 4w for decoder "original"; 4w, 2w, w for "light") and a transposed conv to 1 channel;
+// ReLU elsewhere; no normalisation. Input and output [B, 1, 16384].
+// kind "original" (the paper): tanh on the last layer, no skip connection, so the output is
+// whatever the bottleneck (16384/256 = 64 positions) can carry of the input.
+// kind "residual" (a departure): the last layer's output is a correction ADDED to the input, and
+// that layer starts at zero, so a new generator is the identity: each output starts as its own
+// input and training only learns what to change. The correction is causal: zero before the
+// input's onset (first sample within 20 dB of its peak), since an RIR is silent before its direct
+// sound (without this, small models added sound before the direct sound and moved onsets by up
+// to 17 ms). The paper's form has to rebuild every RIR's
+// fine structure through the bottleneck; small CPU models never learn to and output one
+// input-independent template instead (issue 17).
 class GeneratorImpl : public torch::nn::Module {
  public:
   GeneratorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot,
-                const std::string& decoder = "original");
+                const std::string& decoder = "original", const std::string& kind = "original");
   torch::Tensor forward(torch::Tensor x);
 
  private:
+  bool residual_ = false;
   std::vector<SameConv1d> down_;
   std::vector<SameConvTranspose1d> up_;
 };

@@ -41,6 +41,7 @@ std::string gan_settings_text(const GanSettings& s) {
      << "identity_weight " << format_double(s.identity_weight, 17) << "\n"
      << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 17) << "\n"
      << "decoder " << s.decoder << "\n"
+     << "generator " << s.generator << "\n"
      << "precision " << s.precision << "\n"
      << "warmup_steps " << s.warmup_steps << "\n"
      << "real_list " << s.real_list << "\n"
@@ -93,6 +94,9 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
     } else if (key == "decoder") {
       if (value != "original" && value != "light") throw Error(ctx + ": decoder must be original or light");
       s.decoder = value;
+    } else if (key == "generator") {
+      if (value != "original" && value != "residual") throw Error(ctx + ": generator must be original or residual");
+      s.generator = value;
     } else if (key == "warmup_steps") {
       s.warmup_steps = parse_int(value, ctx);
       if (s.warmup_steps < 0) throw Error(ctx + ": warmup_steps must be >= 0");
@@ -143,10 +147,12 @@ void check_same_architecture(const GanSettings& expected, const GanSettings& fou
                              const std::string& what) {
   if (expected.width != found.width || expected.kernel_length != found.kernel_length ||
       expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz ||
-      expected.decoder != found.decoder) {
+      expected.decoder != found.decoder || expected.generator != found.generator) {
     throw Error(what + ": model width " + std::to_string(found.width) + " (decoder " + found.decoder +
+                ", generator " + found.generator +
                 ", kernel " + std::to_string(found.kernel_length) + "), expected width " +
-                std::to_string(expected.width) + " (decoder " + expected.decoder + ", kernel " +
+                std::to_string(expected.width) + " (decoder " + expected.decoder + ", generator " +
+                expected.generator + ", kernel " +
                 std::to_string(expected.kernel_length) + ")");
   }
 }

@@ -25,6 +25,9 @@ struct GanSettings {
   // per generator at width 64) or "light" (4w, 2w, w: what the original's code comments say,
   // 41.4 M parameters and 1/3 of the FLOPs at width 64). Part of the architecture.
   std::string decoder = "original";
+  // "original" (tanh output, the paper) or "residual" (output = input + a learned correction that
+  // starts at zero). Part of the architecture. Settings files without the key are "original".
+  std::string generator = "original";
   // Linear learning-rate warm-up over the first N steps (0: none, the original).
   long long warmup_steps = 0;
   std::string precision = "float32";  // training arithmetic: "float32" | "bfloat16" (autocast)

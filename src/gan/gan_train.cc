@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "gan/gan_input.h"
+#include "gan/gan_loss_plot.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
 #include "gan/gan_settings.h"
@@ -85,6 +86,7 @@ class BatchSampler {
     }
     return rirs_.index_select(0, torch::tensor(index, torch::kInt64));
   }
+  const torch::Tensor& rirs() const { return rirs_; }
 
  private:
   const std::vector<int64_t>& permutation(long long epoch) {
@@ -254,6 +256,32 @@ class Trainer {
   bool bfloat16_;
 };
 
+// The collapse guard's probe: G_SR over a fixed batch of synthetic RIRs. A collapsed generator's
+// outputs are silent or one template: their spread about their mean is a small fraction of the
+// inputs' (distinct RIRs: ~1 of their norm). Returns why it collapsed, or "".
+constexpr double kSilentFraction = 1e-3;   // output norm / input norm below this: silent
+constexpr double kTemplateFraction = 0.1;  // relative spread of outputs / of inputs below this
+std::string collapse_reason(gan::Generator& g, const torch::Tensor& probe) {
+  torch::NoGradGuard no_grad;
+  const torch::Tensor x = probe.to(torch::kFloat).flatten(1).cpu();
+  const torch::Tensor y = g->forward(probe).to(torch::kFloat).flatten(1).cpu();
+  auto spread = [](const torch::Tensor& v, double* norm) {
+    *norm = v.norm(2, {1}).mean().item<double>();
+    return (v - v.mean(0, true)).norm(2, {1}).mean().item<double>() / std::max(*norm, 1e-30);
+  };
+  double nx = 0, ny = 0;
+  const double sx = spread(x, &nx), sy = spread(y, &ny);
+  std::ostringstream os;
+  os.precision(3);
+  if (!(ny >= kSilentFraction * nx)) {
+    os << "G_SR's outputs are silent (mean norm " << ny << " against " << nx << " for its inputs)";
+  } else if (!(sy >= kTemplateFraction * sx)) {
+    os << "G_SR's outputs are nearly equal across inputs (relative spread " << sy << " against " << sx
+       << " for its inputs): it outputs one template, whatever the input";
+  }
+  return os.str();
+}
+
 bool parameters_finite(CycleGan& model) {
   torch::NoGradGuard no_grad;
   torch::nn::Module* modules[4] = {model.g_real.get(), model.g_synthetic.get(), model.d_real.get(),
@@ -316,6 +344,10 @@ void validate(const GanTrainOptions& o) {
   if (!(o.cycle_weight >= 0) || !std::isfinite(o.cycle_weight)) throw Error("--cycle-weight must be >= 0");
   if (!(o.identity_weight >= 0) || !std::isfinite(o.identity_weight)) throw Error("--identity-weight must be >= 0");
   if (o.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
+  if (o.generator != "original" && o.generator != "residual") {
+    throw Error("--generator must be original or residual, got '" + o.generator + "'");
+  }
+  if (o.collapse_check_every < 0) throw Error("--collapse-check-every must be >= 0");
   if (o.precision != "float32" && o.precision != "bfloat16") {
     throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
   }
@@ -323,7 +355,7 @@ void validate(const GanTrainOptions& o) {
 }
 
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
-  check_same_architecture(saved, asked, where + " (give the --width and --decoder it was trained with)");
+  check_same_architecture(saved, asked, where + " (give the --width, --decoder and --generator it was trained with)");
   std::string diff;
   if (saved.batch_size != asked.batch_size) diff += " --batch-size=" + std::to_string(saved.batch_size);
   if (saved.seed != asked.seed) diff += " --seed=" + std::to_string(saved.seed);
@@ -361,6 +393,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   settings.rmsprop_initial_ms = o.rmsprop_initial_ms;
   settings.precision = o.precision;
   settings.warmup_steps = o.warmup_steps;
+  settings.generator = o.generator;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
 
@@ -421,6 +454,8 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   std::ofstream log(log_path, std::ios::app);
   if (!log) throw Error("cannot append to " + log_path);
   Trainer trainer(model, real, synthetic, device);
+  const torch::Tensor probe =
+      synthetic.rirs().narrow(0, 0, std::min<int64_t>(8, synthetic.rirs().size(0))).to(device);
   StopRequestGuard stop;
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
@@ -433,6 +468,19 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     gan::save_checkpoint(checkpoint_path, model, s);
     checkpoint_step = s;
   };
+  const std::string curves_path = (fs::path(o.model_dir) / "loss_curves.svg").string();
+  // The curves are drawn however training ends (done, interrupted, collapse, non-finite loss).
+  struct CurvesOnExit {
+    std::ofstream& log;
+    std::string csv, svg;
+    ~CurvesOnExit() {
+      try {
+        log.flush();
+        write_loss_curves_svg(csv, svg);
+      } catch (...) {
+      }
+    }
+  } curves_on_exit{log, log_path, curves_path};
   try {
     while (step < o.steps) {
       if (stop.stop_requested()) {
@@ -446,6 +494,17 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
       total_step_s += dt;
       log << format_row(step, L, dt) << '\n' << std::flush;
       result.last_step = step;
+      if (o.collapse_check_every > 0 && step % o.collapse_check_every == 0) {
+        const std::string why = collapse_reason(model.g_real, probe);
+        if (!why.empty()) {
+          throw Error("step " + std::to_string(step) + ": generator collapse: " + why +
+                      ". Training stopped; the last checkpoint " +
+                      (checkpoint_step > 0 ? "(step " + std::to_string(checkpoint_step) + ") is kept"
+                                           : std::string("(none was written)")) +
+                      ". Try another --seed, a longer --warmup-steps, a lower --learning-rate or "
+                      "--generator=residual (--collapse-check-every=0 disables this check)");
+        }
+      }
       if (step % o.checkpoint_every == 0) save(step);
       const auto now = Clock::now();
       if (step == result.first_step || step == o.steps ||

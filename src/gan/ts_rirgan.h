@@ -15,23 +15,30 @@ struct GanTrainOptions {
   std::string model_dir;        // settings.txt, checkpoint.pt, loss_log.csv
   long long steps = 1000;       // total training iterations (a resumed run continues to this count)
   int width = 64;               // model width `dim` (64 = the paper's model)
-  std::string decoder = "original";  // generator up path: "original" (16w,8w,4w) | "light" (4w,2w,w)
+  // Defaults: the configuration that passes the translation-fidelity suite (tests/gan, issue 17);
+  // conf/ts-rirgan-paper.conf restores the paper's. Departures are marked "paper:".
+  std::string decoder = "light";  // generator up path: "original" (16w,8w,4w; paper's code) | "light" (4w,2w,w)
   int batch_size = 64;          // the paper's batch
   uint64_t seed = 0;
   int num_threads = 1;
   long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
   bool resume = false;
   std::string device = "cpu";   // "cpu" | "cuda"
-  double learning_rate = 3e-5;  // RMSProp (TF semantics), the paper's rate
-  int disc_updates = 2;         // discriminator updates per generator update
-  // Departures from the original, for small CPU models; the defaults are the original's.
-  std::string init = "glorot";  // "glorot" (the original) | "he" (see gan_networks.h)
+  double learning_rate = 1e-4;  // RMSProp (TF semantics); paper: 3e-5
+  int disc_updates = 1;         // discriminator updates per generator update; paper: 2
+  std::string init = "he";      // "glorot" (paper) | "he" (see gan_networks.h)
   double cycle_weight = 250.0;  // generator loss weight of each cycle L1 term
   double identity_weight = 175.0;  // generator loss weight of the identity L1 term
-  double rmsprop_initial_ms = 1.0;  // RMSProp mean-square start: 1 (TF, the original) or 0
-  long long warmup_steps = 0;   // learning rate ramped linearly over the first N steps (0: none)
+  double rmsprop_initial_ms = 0.0;  // RMSProp mean-square start: 1 (TF, paper) or 0
+  long long warmup_steps = 100;  // learning rate ramped linearly over the first N steps (paper: 0)
+  // "original" (tanh output, paper) | "residual" (input + causal correction, gan_networks.h)
+  std::string generator = "residual";
+  // Collapse guard: every N steps (0: never) G_SR translates a fixed probe batch of synthetic
+  // RIRs; training stops with an Error when the outputs are silent or nearly equal to each other
+  // while their inputs are not.
+  long long collapse_check_every = 100;
   // "float32" (the original) or "bfloat16": forward passes under CPU autocast (bfloat16
-  // convolutions, float32 weights, gradients, optimiser and losses); ~2x faster steps on CPUs
+  // convolutions, float32 weights, gradients, optimiser and losses); 1.46x faster width-16 steps (bench/RESULTS.md) on CPUs
   // with AVX512-BF16/AMX.
   std::string precision = "float32";
   double progress_interval_s = 10.0;
@@ -67,7 +74,7 @@ struct GanTranslateOptions {
   std::string device = "cpu";
   int num_threads = 1;
   // "float32", or "bfloat16": weights and activations in bfloat16 with float32 accumulation
-  // (oneDNN); ~2.5x faster on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
+  // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
   // (tests/gan/gan_networks_test.cc). Slower than float32 on CPUs without bfloat16 arithmetic.
   std::string precision = "float32";
 };

@@ -180,6 +180,30 @@ TEST(GanNetworks, LightDecoderParameterCount) {
   EXPECT_THROW(Generator(4, 25, InitKind::kGlorot, "heavy"), Error);
 }
 
+// --generator=residual: the last layer's correction starts at zero, so a new generator returns its
+// input exactly (each output starts as its own input); the original's tanh generator does not.
+TEST(GanNetworks, ResidualGeneratorStartsAsTheIdentity) {
+  torch::manual_seed(7);
+  Generator residual(4, 25, InitKind::kHe, "light", "residual");
+  Generator original(4, 25, InitKind::kHe, "light", "original");
+  const torch::Tensor x = torch::randn({3, 1, 16384}) * 0.1;
+  torch::NoGradGuard no_grad;
+  EXPECT_TRUE(torch::equal(residual->forward(x), x));
+  EXPECT_GT((original->forward(x) - x).abs().max().item<double>(), 1e-3);
+  EXPECT_EQ(count_parameters(*residual), count_parameters(*original));
+  // The correction is causal: with a non-zero last layer, samples before each input's onset (its
+  // first sample within 20 dB of the peak) stay exactly the input's.
+  torch::Tensor rir = torch::zeros({2, 1, 16384});
+  rir[0][0][300] = 1.0, rir[1][0][5000] = -1.0;
+  rir.narrow(2, 6000, 4000).normal_(0, 0.02);
+  for (auto& p : residual->parameters()) p.normal_(0, 0.05);
+  const torch::Tensor y = residual->forward(rir);
+  EXPECT_TRUE(torch::equal(y[0][0].narrow(0, 0, 300), rir[0][0].narrow(0, 0, 300)));
+  EXPECT_TRUE(torch::equal(y[1][0].narrow(0, 0, 5000), rir[1][0].narrow(0, 0, 5000)));
+  EXPECT_GT((y[1][0].narrow(0, 5000, 11384) - rir[1][0].narrow(0, 5000, 11384)).abs().max().item<double>(), 1e-4);
+  EXPECT_THROW(Generator(4, 25, InitKind::kHe, "light", "skip"), Error);
+}
+
 // He-uniform: limit sqrt(6/fan) with fan = inputs summed per output (in*k for a conv, in*k/stride
 // for the transposed conv), variance 2/fan; biases zero.
 TEST(GanNetworks, HeUniformInitialisation) {

@@ -1,0 +1,102 @@
+#include "fidelity_suite.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "fidelity_domains.h"
+#include "io/rir_set.h"
+
+namespace fs = std::filesystem;
+
+namespace tsrir_test {
+namespace {
+
+std::string tail_of(const std::string& path, size_t chars) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string s = ss.str();
+  return s.size() > chars ? s.substr(s.size() - chars) : s;
+}
+
+std::string run_logged(const std::string& command, const std::string& log) {
+  const int raw = std::system((command + " > " + log + " 2>&1").c_str());
+  const int status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  if (status == 0) return "";
+  return "exit status " + std::to_string(status) + " of: " + command + "\n" + tail_of(log, 1500);
+}
+
+std::vector<tsrir::Signal> load_scp(const std::string& scp) {
+  std::vector<tsrir::Signal> rirs;
+  for (const auto& ref : tsrir::read_rir_refs(scp)) rirs.push_back(tsrir::load_rir(ref));
+  return rirs;
+}
+
+std::vector<tsrir::Signal> signals_of(const std::vector<FidelityRir>& rirs) {
+  std::vector<tsrir::Signal> out;
+  for (const auto& r : rirs) out.push_back(r.signal);
+  return out;
+}
+
+}  // namespace
+
+uint64_t fidelity_seed_of_the_day() {
+  if (const char* s = std::getenv("TSRIR_GAN_FIDELITY_SEED")) return std::strtoull(s, nullptr, 10);
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  return uint64_t((utc.tm_year + 1900) * 10000 + (utc.tm_mon + 1) * 100 + utc.tm_mday);
+}
+
+FidelitySuiteResult run_fidelity_suite(const FidelitySuiteOptions& o) {
+  FidelitySuiteResult result;
+  const std::string d = o.work_dir;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  FidelityDomainSpec synthetic_spec, real_spec;
+  real_spec.hidden_effect = true;
+  // Four independent draws: no RIR is in two sets, held-out sets are not trained on.
+  const uint64_t base = o.seed * 16;
+  const auto train_syn = make_fidelity_domain(synthetic_spec, "syn", o.train_count, base + 1);
+  const auto train_real = make_fidelity_domain(real_spec, "real", o.train_count, base + 2);
+  const auto test_syn = make_fidelity_domain(synthetic_spec, "test_syn", o.test_count, base + 3);
+  const auto test_real = make_fidelity_domain(real_spec, "test_real", o.test_count, base + 4);
+  const std::string train_syn_scp = write_fidelity_domain(train_syn, d + "/train_syn");
+  const std::string train_real_scp = write_fidelity_domain(train_real, d + "/train_real");
+  const std::string test_syn_scp = write_fidelity_domain(test_syn, d + "/test_syn");
+
+  const auto t0 = std::chrono::steady_clock::now();
+  result.error = run_logged(o.bin_dir + "/ts-rirgan-train --real=" + train_real_scp + " --synthetic=" + train_syn_scp +
+                                " --num-threads=" + std::to_string(o.num_threads) + " --progress-interval=30 " +
+                                o.train_args + " --seed=" + std::to_string(o.seed) + " " + d + "/model",
+                            d + "/train.log");
+  result.train_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (result.error.empty()) {
+    result.error = run_logged(o.bin_dir + "/gas-to-real --model=" + d + "/model --keep-length=input --num-threads=" +
+                                  std::to_string(o.num_threads) + " " + test_syn_scp + " " + d + "/sr",
+                              d + "/translate.log");
+  }
+  if (result.error.empty()) {
+    std::map<std::string, tsrir::Signal> by_id;
+    for (auto& s : load_scp(d + "/sr/rir.scp")) by_id[s.id] = std::move(s);
+    std::vector<tsrir::Signal> inputs = signals_of(test_syn), outputs;
+    for (const auto& in : inputs) {
+      auto it = by_id.find(in.id);
+      if (it == by_id.end()) {
+        result.error = "gas-to-real wrote no output for " + in.id;
+        break;
+      }
+      outputs.push_back(it->second);
+    }
+    if (result.error.empty()) result.report = evaluate_fidelity(inputs, outputs, signals_of(test_real));
+  }
+  if (!o.keep && result.passed()) fs::remove_all(d);
+  return result;
+}
+
+}  // namespace tsrir_test
