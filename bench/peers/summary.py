@@ -59,16 +59,18 @@ def main():
         cmd, mach = meta(L)
         for r in rows(L, r"1 core"):
             room = r[0].split(" ")[0]
-            ours, ism, pra_i, xi, pra_h, xh, rg, xr = r[1:9]
+            r = r + ["-"] * (11 - len(r))
+            ours, ism, pra_i, xi, pra_h, xh, rg, xr, rgi, xri = r[1:11]
             items.append(("rir-simulate, %s room, 1 core CPU per 1 s RIR" % room,
                           "tsrir gas %s (ism only %s); pyroomacoustics ISM %s (peer time / tsrir time %s), hybrid %s (%s); "
-                          "RIR-Generator %s (%s, vs tsrir ism only)" % (ms(ours), ms(ism), ms(pra_i), xi, ms(pra_h), xh, ms(rg), xr),
-                          cmd, mach))
+                          "RIR-Generator, all images of 1 s, %s (%s); on tsrir's image set %s (%s vs tsrir ism only)"
+                          % (ms(ours), ms(ism), ms(pra_i), xi, ms(pra_h), xh, ms(rg), xr, ms(rgi), xri), cmd, mach))
         for r in rows(L, r"cores wall"):
             room = r[0].split(" ")[0]
+            r = r + ["-"] * (11 - len(r))
             items.append(("rir-simulate, %s room, all cores, wall per RIR" % room,
-                          "tsrir %s; pra ISM %s (%s), hybrid %s (%s); RIR-Generator %s (%s)" % (
-                              ms(r[1]), ms(r[3]), r[4], ms(r[5]), r[6], ms(r[7]), r[8]), cmd, mach))
+                          "tsrir %s; pra ISM %s (%s), hybrid %s (%s); RIR-Generator all images %s (%s), tsrir's image set %s (%s)" % (
+                              ms(r[1]), ms(r[3]), r[4], ms(r[5]), r[6], ms(r[7]), r[8], ms(r[9]), r[10]), cmd, mach))
     L = load("metrics_speed")
     if L:
         cmd, mach = meta(L)
@@ -86,6 +88,16 @@ def main():
             items.append(("wav-reverberate vs Kaldi's, file to file, per 10 s utterance",
                           "tsrir %s ms CPU (%s ms wall); Kaldi %s ms CPU (%s ms wall); Kaldi/tsrir CPU %s. %s"
                           % (t[0][2], t[0][1], k[0][2], k[0][1], k[0][3], diff.replace("outputs: ", "")), cmd, mach))
+    L = load("datadir_speed")
+    if L:
+        cmd, mach = meta(L)
+        t = rows(L, r"tsrir reverberate-data")
+        k = rows(L, r"Kaldi reverberate_data_dir")
+        if t and k:
+            items.append(("reverberate-data --write-wavs vs Kaldi's reverberate_data_dir.py + its pipes run to files, "
+                          "per 10 s utterance (RIR only)",
+                          "tsrir %s ms CPU (%s ms wall); Kaldi %s ms CPU (%s ms wall); Kaldi/tsrir CPU %s"
+                          % (t[0][2], t[0][1], k[0][2], k[0][1], k[0][3]), cmd, mach))
     L = load("ism_accuracy")
     if L:
         cmd, mach = meta(L)
@@ -98,7 +110,7 @@ def main():
         cmd, mach = meta(L)
         ref = [r for r in rows(L, r"^reference$")]
         if ref:
-            txt = "; ".join("%s: T30 500 Hz %s s, 1 kHz %s s, C50 %s dB" % (r[1], r[6], r[7], r[10] or "-")
+            txt = "; ".join("%s: T30 500 Hz %s s, 1 kHz %s s, C50 %s dB" % (r[1], r[5], r[6], r[10] or "-")
                             for r in ref)
             items.append(("reference room T30 / C50: tsrir vs pyroomacoustics hybrid vs Sabine/Eyring (information)",
                           txt, cmd, mach))
