@@ -147,6 +147,19 @@ def main():
            "Peers built outside the repository (Kaldi, pyroomacoustics with compiled libroom, RIR-Generator's",
            "computeRIR behind a small driver), found through KALDI_ROOT, PRA_PYTHONPATH, RIR_GENERATOR.",
            "Each block is the script's output as it ran: first line the command, then machine, date and load.",
+           "",
+           "How the peers were built and what is timed (details in each script's header):",
+           "- tsrir: the whole program per RIR/utterance (process start, file reading and writing included);",
+           "  pyroomacoustics and RIR-Generator: only their simulation/measurement call inside their own process.",
+           "- pyroomacoustics 0.10.1+ (LCAV, 6fe43fe), libroom compiled -O3 with Debian's pybind11/Eigen/nanoflann;",
+           "  ISM with max_order from pra.inverse_sabine, hybrid = max_order 3 + default ray tracing; pra sets",
+           "  its own RIR length (pra_sim.py prints it): ISM 0.62 / 1.45 / 4.3 s and hybrid 0.46 / 0.96 / 1.9 s",
+           "  for the small / reference / large room, against tsrir's 1.0 s. No air absorption in either tool.",
+           "- RIR-Generator core 2.2.20201022 compiled -O3, driven by a small command-line wrapper (outside the repo).",
+           "- Kaldi (kaldi-asr, f400766) built by its own configure with Debian OpenFst 1.7.9 and OpenBLAS, with",
+           "  Kaldi's default flags (-O1 -g); its wav-reverberate reads only PCM RIRs, so RIRs are int16 for both.",
+           "- On this shared 2-core VM the load was 20-30 (other engineers' jobs): read CPU times; the 2-core wall",
+           "  rows mostly measure the other jobs. Re-run `bench/peers/run_all.sh` on an idle machine for wall times.",
            ""]
     for name in ORDER:
         L = load(name)
