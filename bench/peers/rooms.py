@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Room table of the side-by-side benchmarks (rooms.txt) and the one absorption every tool gets.
 
-  rooms.py list                 -> name Lx,Ly,Lz src mic t60 alpha beta (one line per room)
+  rooms.py list                 -> name Lx,Ly,Lz src mic t60 alpha beta ism_samples (one line per room)
+ism_samples: 16 kHz samples up to tsrir's image-source transition time (the delay before which
+about 2000 images arrive, src/sim/image_sources.cc), i.e. the image set of --model=ism.
   rooms.py tsrir NAME N [scat]  -> N lines of a tsrir room list for that room (ids NAME_0001 ...)
 Absorption: Eyring inversion of the target T60 with c = 343 m/s, the same as tsrir's t60= key,
 but written out as absorption= so that pyroomacoustics and RIR-Generator get the identical value
@@ -30,8 +32,10 @@ def rooms():
             V = dim[0] * dim[1] * dim[2]
             S = 2 * (dim[0] * dim[1] + dim[0] * dim[2] + dim[1] * dim[2])
             alpha = 1.0 - math.exp(-24 * math.log(10) * V / (C * S * t60))
+            dist = math.sqrt(sum((a - b) ** 2 for a, b in zip(src, mic)))
+            t_tr = max((3 * V * 2000 / (4 * math.pi)) ** (1 / 3) / C, dist / C + 1e-3)
             out.append(dict(name=name, dim=dim, src=src, mic=mic, t60=t60, V=V, S=S, alpha=alpha,
-                            beta=math.sqrt(1 - alpha)))
+                            beta=math.sqrt(1 - alpha), ism_samples=int(math.ceil(t_tr * 16000))))
     return out
 
 
@@ -60,7 +64,7 @@ if __name__ == "__main__":
     if len(sys.argv) >= 2 and sys.argv[1] == "list":
         for r in rooms():
             print(r["name"], fmt(r["dim"]), fmt(r["src"]), fmt(r["mic"]), r["t60"], "%.6f" % r["alpha"],
-                  "%.6f" % r["beta"])
+                  "%.6f" % r["beta"], r["ism_samples"])
     elif len(sys.argv) >= 4 and sys.argv[1] == "tsrir":
         r = by_name(sys.argv[2])
         scat = sys.argv[4] if len(sys.argv) > 4 else "0.1"

@@ -6,6 +6,8 @@
 #   (user+sys) / N; peers: median time of the simulation call in their own process (imports and
 #   file writing excluded), so the comparison leans in the peers' favour.
 # "x" columns = peer time / tsrir time (how many times faster tsrir is).
+# pyroomacoustics sets its own RIR length (ISM: up to max_order; hybrid: until the ray energy
+#   threshold); pra_sim.py prints it (length_s), e.g. ISM 0.62 / 1.45 / 4.3 s, hybrid 0.46 / 0.96 / 1.9 s.
 # All cores: tsrir --num-threads=nproc over N RIRs (wall / N); peers: nproc copies run at once,
 #   wall per RIR / nproc (neither peer parallelises one RIR over cores here: pra num_threads=1).
 set -euo pipefail
@@ -17,11 +19,11 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 machine_line
 echo
 echo "## Simulator time per RIR, 16 kHz (CPU s on one core; wall s per RIR with $P cores)"
-echo "| room | tsrir gas (ism+diffuse), 1.0 s | tsrir ism only, 1.0 s | pra ISM | x | pra hybrid | x | RIR-Generator 1.0 s, all images | x |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| room | tsrir gas (ism+diffuse), 1.0 s | tsrir ism only, 1.0 s | pra ISM | x | pra hybrid | x | RIR-Generator, every image of 1.0 s | x vs gas | RIR-Generator, tsrir's image set (up to its transition time) | x vs ism |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 pra_field() { sed -n "s/.*$1=\([0-9.]*\).*/\1/p"; }
 for room in $("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'); do
-  read -r _ dim src mic t60 alpha beta < <("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk -v r="$room" '$1 == r')
+  read -r _ dim src mic t60 alpha beta ism_samples < <("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk -v r="$room" '$1 == r')
   "$PRA_PYTHON" "$peers_dir/rooms.py" tsrir "$room" "$n" > "$tmp/$room.txt"
   for mode in 1 all; do
     t=1; [ "$mode" = all ] && t=$P
@@ -41,20 +43,25 @@ for room in $("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'); do
         cols+=("$v" "$(ratio "$ours" "$v")")
       else cols+=(absent -); fi
     done
-    if have_rirgen; then
-      args=(--room=$dim --src=$src --mic=$mic --beta=$beta --nsamples=16000 --order=-1 --repeat=$rg_reps -)
-      if [ "$mode" = 1 ]; then v=$("$RIR_GENERATOR" "${args[@]}" | pra_field cpu_s_per_rir)
-      else
-        for k in $(seq $P); do "$RIR_GENERATOR" "${args[@]}" > "$tmp/rg$k" & done; wait
-        v=$(cat "$tmp"/rg* | pra_field wall_s_per_rir | awk -v p=$P '{s+=$1} END {printf "%.5f", s/NR/p}')
-      fi
-      cols+=("$v" "$(ratio "$oursi" "$v")")
-    else cols+=(absent -); fi
+    for ns in 16000 "$ism_samples"; do
+      if have_rirgen; then
+        args=(--room=$dim --src=$src --mic=$mic --beta=$beta --nsamples=$ns --order=-1 --repeat=$rg_reps -)
+        if [ "$mode" = 1 ]; then v=$("$RIR_GENERATOR" "${args[@]}" | pra_field cpu_s_per_rir)
+        else
+          for k in $(seq $P); do "$RIR_GENERATOR" "${args[@]}" > "$tmp/rg$k" & done; wait
+          v=$(cat "$tmp"/rg* | pra_field wall_s_per_rir | awk -v p=$P '{s+=$1} END {printf "%.5f", s/NR/p}')
+        fi
+        rm -f "$tmp"/rg*
+        if [ "$ns" = 16000 ]; then cols+=("$v" "$(ratio "$ours" "$v")"); else cols+=("$v" "$(ratio "$oursi" "$v")"); fi
+      else cols+=(absent -); fi
+    done
     rm -f "$tmp"/pra* "$tmp"/rg*
     label="$room (T60 $t60 s, alpha $alpha), $( [ "$mode" = 1 ] && echo "1 core CPU s" || echo "$P cores wall s")"
-    echo "| $label | $ours | $oursi | ${cols[0]} | ${cols[1]} | ${cols[2]} | ${cols[3]} | ${cols[4]} | ${cols[5]} |"
+    echo "| $label | $ours | $oursi | ${cols[0]} | ${cols[1]} | ${cols[2]} | ${cols[3]} | ${cols[4]} | ${cols[5]} | ${cols[6]} | ${cols[7]} |"
   done
 done
 echo
-echo "x: pra columns divide by tsrir gas; RIR-Generator (image sources only) divides by tsrir ism only."
+echo "x = peer time / tsrir time. pra columns and RIR-Generator's full 1 s RIR divide by tsrir gas (each a"
+echo "complete 1 s RIR; RIR-Generator has no diffuse model, so it needs every image); RIR-Generator on"
+echo "tsrir's image set (nsamples = the ism_samples column of rooms.py list, order -1) divides by tsrir ism only."
 echo "Load after the run: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -59,16 +59,18 @@ def main():
         cmd, mach = meta(L)
         for r in rows(L, r"1 core"):
             room = r[0].split(" ")[0]
-            ours, ism, pra_i, xi, pra_h, xh, rg, xr = r[1:9]
+            r = r + ["-"] * (11 - len(r))
+            ours, ism, pra_i, xi, pra_h, xh, rg, xr, rgi, xri = r[1:11]
             items.append(("rir-simulate, %s room, 1 core CPU per 1 s RIR" % room,
                           "tsrir gas %s (ism only %s); pyroomacoustics ISM %s (peer time / tsrir time %s), hybrid %s (%s); "
-                          "RIR-Generator %s (%s, vs tsrir ism only)" % (ms(ours), ms(ism), ms(pra_i), xi, ms(pra_h), xh, ms(rg), xr),
-                          cmd, mach))
+                          "RIR-Generator, all images of 1 s, %s (%s); on tsrir's image set %s (%s vs tsrir ism only)"
+                          % (ms(ours), ms(ism), ms(pra_i), xi, ms(pra_h), xh, ms(rg), xr, ms(rgi), xri), cmd, mach))
         for r in rows(L, r"cores wall"):
             room = r[0].split(" ")[0]
+            r = r + ["-"] * (11 - len(r))
             items.append(("rir-simulate, %s room, all cores, wall per RIR" % room,
-                          "tsrir %s; pra ISM %s (%s), hybrid %s (%s); RIR-Generator %s (%s)" % (
-                              ms(r[1]), ms(r[3]), r[4], ms(r[5]), r[6], ms(r[7]), r[8]), cmd, mach))
+                          "tsrir %s; pra ISM %s (%s), hybrid %s (%s); RIR-Generator all images %s (%s), tsrir's image set %s (%s)" % (
+                              ms(r[1]), ms(r[3]), r[4], ms(r[5]), r[6], ms(r[7]), r[8], ms(r[9]), r[10]), cmd, mach))
     L = load("metrics_speed")
     if L:
         cmd, mach = meta(L)
@@ -86,6 +88,16 @@ def main():
             items.append(("wav-reverberate vs Kaldi's, file to file, per 10 s utterance",
                           "tsrir %s ms CPU (%s ms wall); Kaldi %s ms CPU (%s ms wall); Kaldi/tsrir CPU %s. %s"
                           % (t[0][2], t[0][1], k[0][2], k[0][1], k[0][3], diff.replace("outputs: ", "")), cmd, mach))
+    L = load("datadir_speed")
+    if L:
+        cmd, mach = meta(L)
+        t = rows(L, r"tsrir reverberate-data")
+        k = rows(L, r"Kaldi reverberate_data_dir")
+        if t and k:
+            items.append(("reverberate-data --write-wavs vs Kaldi's reverberate_data_dir.py + its pipes run to files, "
+                          "per 10 s utterance (RIR only)",
+                          "tsrir %s ms CPU (%s ms wall); Kaldi %s ms CPU (%s ms wall); Kaldi/tsrir CPU %s"
+                          % (t[0][2], t[0][1], k[0][2], k[0][1], k[0][3]), cmd, mach))
     L = load("ism_accuracy")
     if L:
         cmd, mach = meta(L)
@@ -98,7 +110,7 @@ def main():
         cmd, mach = meta(L)
         ref = [r for r in rows(L, r"^reference$")]
         if ref:
-            txt = "; ".join("%s: T30 500 Hz %s s, 1 kHz %s s, C50 %s dB" % (r[1], r[6], r[7], r[10] or "-")
+            txt = "; ".join("%s: T30 500 Hz %s s, 1 kHz %s s, C50 %s dB" % (r[1], r[5], r[6], r[10] or "-")
                             for r in ref)
             items.append(("reference room T30 / C50: tsrir vs pyroomacoustics hybrid vs Sabine/Eyring (information)",
                           txt, cmd, mach))
@@ -135,6 +147,19 @@ def main():
            "Peers built outside the repository (Kaldi, pyroomacoustics with compiled libroom, RIR-Generator's",
            "computeRIR behind a small driver), found through KALDI_ROOT, PRA_PYTHONPATH, RIR_GENERATOR.",
            "Each block is the script's output as it ran: first line the command, then machine, date and load.",
+           "",
+           "How the peers were built and what is timed (details in each script's header):",
+           "- tsrir: the whole program per RIR/utterance (process start, file reading and writing included);",
+           "  pyroomacoustics and RIR-Generator: only their simulation/measurement call inside their own process.",
+           "- pyroomacoustics 0.10.1+ (LCAV, 6fe43fe), libroom compiled -O3 with Debian's pybind11/Eigen/nanoflann;",
+           "  ISM with max_order from pra.inverse_sabine, hybrid = max_order 3 + default ray tracing; pra sets",
+           "  its own RIR length (pra_sim.py prints it): ISM 0.62 / 1.45 / 4.3 s and hybrid 0.46 / 0.96 / 1.9 s",
+           "  for the small / reference / large room, against tsrir's 1.0 s. No air absorption in either tool.",
+           "- RIR-Generator core 2.2.20201022 compiled -O3, driven by a small command-line wrapper (outside the repo).",
+           "- Kaldi (kaldi-asr, f400766) built by its own configure with Debian OpenFst 1.7.9 and OpenBLAS, with",
+           "  Kaldi's default flags (-O1 -g); its wav-reverberate reads only PCM RIRs, so RIRs are int16 for both.",
+           "- On this shared 2-core VM the load was 20-30 (other engineers' jobs): read CPU times; the 2-core wall",
+           "  rows mostly measure the other jobs. Re-run `bench/peers/run_all.sh` on an idle machine for wall times.",
            ""]
     for name in ORDER:
         L = load(name)
