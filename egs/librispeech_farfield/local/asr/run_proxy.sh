@@ -68,7 +68,8 @@ for seed in $seeds; do
   for s in $train_sets; do
     if [ "$s" = clean ]; then tr=$data/tts/train; else tr=$data/train_$s; fi
     m=$exp/${s}_seed$seed
-    sig="$train_opts $(cat "$tr/.done" "$data/tts/.done" 2>/dev/null | md5sum)"
+    inputs=("$data/tts/.done"); [ "$s" = clean ] || inputs+=("$tr/.done")
+    sig="$train_opts $(cat "${inputs[@]}" | md5sum)"
     if ! { [ -f "$m/.done" ] && [ "$(cat "$m/.done")" = "$sig" ]; }; then
       resume=()
       if [ -f "$m/checkpoint.pt" ] && [ -f "$m/.sig" ] && [ "$(cat "$m/.sig")" = "$sig" ]; then resume=(--resume); else rm -rf "$m"; fi
