@@ -8,10 +8,13 @@ PyTorch: tsrir.data.FarFieldDataset (imports torch; `import tsrir` does not).
 import json as _json
 
 from . import _tsrir
-from ._tsrir import (Augmenter, Error, encode_wav, eq_apply, model_components_help, read_audio,
-                     resample, room_list_keys_help, room_list_line, write_wav)
+from ._tsrir import (Augmenter, Error, audio_info, encode_wav, eq_apply, format_rir_list_line,
+                     model_components_help, read_audio, read_noise_list, read_rir_list, read_data_dir,
+                     read_room_list, resample, rir_onset_index, rir_shift_index, room_list_keys_help, room_list_line,
+                     write_wav)
 
-__all__ = ["Augmenter", "Error", "encode_wav", "eq_apply", "metrics", "read_audio", "resample",
+__all__ = ["Augmenter", "Error", "audio_info", "format_rir_list_line", "read_noise_list",
+           "read_rir_list", "read_room_list", "read_data_dir", "rir_onset_index", "rir_shift_index", "encode_wav", "eq_apply", "metrics", "read_audio", "resample",
            "reverberate", "simulate", "write_wav", "room_list_line", "model_components_help",
            "room_list_keys_help"]
 
