@@ -117,6 +117,36 @@ class Reverberate(unittest.TestCase):
             tsrir.reverberate(np.array([0.0, float("nan")]), np.ones(10), FS)
 
 
+class GilReleased(unittest.TestCase):
+    def test_python_runs_while_cpp_works(self):
+        """A Python thread keeps running during one long reverberate() call in another thread:
+        the GIL is released. (Held, the main loop would stall for the whole call.)"""
+        import threading
+        import time
+        h = tsrir.simulate((20, 15, 8), (2, 1.5, 1.6), (14, 9, 1.2), fs=48000, t60=2.0, length=8.0)
+        x = np.random.default_rng(0).standard_normal(48000 * 60).astype(np.float32)
+        span = {}
+
+        def work():
+            span["start"] = time.monotonic()
+            tsrir.reverberate(x, h, 48000)
+            span["end"] = time.monotonic()
+
+        t = threading.Thread(target=work)
+        ticks = []
+        t.start()
+        while t.is_alive():
+            ticks.append(time.monotonic())
+        t.join()
+        inside = [v for v in ticks if span["start"] < v < span["end"]]
+        duration = span["end"] - span["start"]
+        self.assertGreater(duration, 0.05)
+        gaps = np.diff([span["start"]] + inside + [span["end"]])
+        # Python's switch interval is 5 ms; a held GIL would leave one gap of the whole call.
+        self.assertLess(gaps.max(), 0.5 * duration, "main thread stalled %.3f s of a %.3f s call"
+                        % (gaps.max(), duration))
+
+
 ROOMS = [
     # (rir id, room-list keys, simulate() keyword arguments)
     ("r1", "room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2 t60=0.6",
