@@ -97,8 +97,16 @@ class Manifests(unittest.TestCase):
         for u in recs:
             for copy in (1, 2, 3):
                 np.testing.assert_array_equal(a.augment(u, copy)[0], b.augment(u, copy)[0])
+        # The imported noise list augments as the same list written by hand.
+        write_text(d + "/noise_list_by_hand",
+                   "--noise-id n1 --noise-type point-source --bg-fg-type background %s/n1.wav\n" % d)
         c = tsrir.Augmenter(rir_set_parameters=[back], noise_set_parameters=[noise_list], **opts)
-        self.assertTrue(any(c.plan(u, k)["noises"] for u in recs for k in (1, 2, 3)))
+        e = tsrir.Augmenter(rir_set_parameters=[back], noise_set_parameters=[d + "/noise_list_by_hand"], **opts)
+        self.assertEqual(c.num_noises, 1)
+        for u in recs:
+            for copy in (1, 2, 3):
+                self.assertEqual(c.plan(u, copy), e.plan(u, copy))
+                np.testing.assert_array_equal(c.augment(u, copy)[0], e.augment(u, copy)[0])
 
     def test_data_dir_with_pipes(self):
         d = self.dir + "/data"
