@@ -106,9 +106,43 @@ class Reverberate(unittest.TestCase):
         self.check(["--additive-signals=%s/noise.wav" % self.dir, "--snrs=5", "--start-times=0"],
                    rir=None, noise=n1, snr_db=5)
 
-    def test_direct_shift_is_refused_not_faked(self):
-        with self.assertRaises(tsrir.Error):
-            tsrir.reverberate(np.ones(100), np.ones(10), FS, shift="direct")
+    def test_direct_shift(self):
+        """shift="direct": wav-reverberate's output advanced to the direct sound, not to the
+        largest sample. An RIR whose direct sound (sample 40) is weaker than a reflection (sample
+        300): the program's full output (--shift-output=false) read from sample 40 on, bit for bit."""
+        rng = np.random.default_rng(8)
+        h = np.zeros(4000)
+        h[40], h[300] = 0.45, 0.9
+        h[301:] = 0.05 * rng.standard_normal(3699) * np.exp(-np.arange(3699) / 800)
+        write_wav16(self.dir + "/rir_reflection.wav", h, FS)
+        hq = self.load("rir_reflection.wav")[0]
+        self.assertEqual((tsrir.rir_onset_index(hq, FS), tsrir.rir_shift_index(hq, FS)), (40, 300))
+        out = self.dir + "/full.wav"
+        run([program("wav-reverberate"), "--impulse-response=%s/rir_reflection.wav" % self.dir,
+             "--shift-output=false", self.dir + "/speech.wav", out])
+        full, _ = read_wav16(out)
+        speech = self.load("speech.wav")[0]
+        y = tsrir.reverberate(speech, hq, FS, shift="direct")
+        got, _ = read_wav16(tsrir.encode_wav(y, FS))
+        np.testing.assert_array_equal(got[0], full[0, 40:40 + len(speech)])
+        # The peak shift is the program's --shift-output=true: 260 samples later.
+        peak, _ = read_wav16(tsrir.encode_wav(tsrir.reverberate(speech, hq, FS, shift="peak"), FS))
+        np.testing.assert_array_equal(peak[0], full[0, 300:300 + len(speech)])
+
+    def test_direct_shift_on_simulated_rooms(self):
+        """The onset is the direct path (distance / c from the geometry) where the largest sample
+        is a reflection, and equals the peak where the direct sound is the largest."""
+        import math
+        far = dict(room=(6, 4.5, 3), src=(1, 1, 1.5), mic=(5, 3.5, 1.2))
+        h = tsrir.simulate(t60=0.6, length=0.8, **far)
+        expected = math.dist(far["src"], far["mic"]) / 343.0 * FS
+        self.assertLessEqual(abs(tsrir.rir_onset_index(h, FS) - expected), 2)
+        self.assertGreater(tsrir.rir_shift_index(h, FS) - expected, 50)
+        near = tsrir.simulate((6, 4.5, 3), (2, 1.5, 1.6), (4, 3, 1.2), t60=0.6, length=0.8)
+        x = speech_like(FS, FS, 3)
+        self.assertEqual(tsrir.rir_onset_index(near, FS), tsrir.rir_shift_index(near, FS))
+        np.testing.assert_array_equal(tsrir.reverberate(x, near, FS, shift="direct"),
+                                      tsrir.reverberate(x, near, FS, shift="peak"))
 
     def test_errors_are_clear(self):
         with self.assertRaisesRegex(tsrir.Error, "snr_db"):
