@@ -24,6 +24,22 @@ void bind_audio(py::module_& m) {
       "Reads an audio file, '-' or 'command |' (Kaldi rxfilename) as the programs do.\n"
       "Returns (samples, fs): samples is float32 (channels, n), full scale 1.0 (int16 / 32768).");
   m.def(
+      "audio_info",
+      [](const std::string& path) {
+        AudioInfo info;
+        {
+          py::gil_scoped_release release;
+          info = probe_audio(path);
+        }
+        py::dict d;
+        d["sample_rate"] = info.sample_rate_hz;
+        d["channels"] = info.channels;
+        d["frames"] = info.frames;
+        d["format"] = info.format;
+        return d;
+      },
+      py::arg("path"), "The header of an audio file (libsndfile): sample_rate, channels, frames, format.");
+  m.def(
       "encode_wav",
       [](const py::handle& samples, double fs, const std::string& format) {
         std::vector<std::vector<float>> channels = to_channels(samples, "samples");

@@ -41,6 +41,21 @@ void bind_metrics(py::module_& m) {
       py::arg("direct_post_ms") = defaults.direct_post_ms, py::arg("clarity_ms") = defaults.clarity_time_ms,
       py::arg("onset_db") = defaults.onset_threshold_db, py::arg("rir_id") = "rir",
       "rir-metrics --format=json for one RIR (the whole document, as text).");
+  m.def(
+      "rir_onset_index",
+      [](const py::handle& rir, double fs, double onset_db) {
+        Signal signal;
+        signal.sample_rate_hz = fs;
+        signal.samples = to_samples(rir, "rir");
+        MetricsOptions options;
+        options.onset_threshold_db = onset_db;
+        py::gil_scoped_release release;
+        return measure_rir(signal, options).onset_sample;
+      },
+      py::arg("rir"), py::arg("fs"), py::arg("onset_db") = defaults.onset_threshold_db,
+      "The direct sound's arrival as rir-metrics (iso) finds it: the first sample whose energy is\n"
+      "within onset_db of the peak's (ISO 3382-1). Unlike the largest sample (rir_shift_index), a\n"
+      "reflection stronger than the direct sound does not move it.");
 }
 
 }  // namespace tsrir::python

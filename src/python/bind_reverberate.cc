@@ -88,6 +88,15 @@ void bind_reverberate(py::module_& m) {
       py::arg("input_channel") = 0, py::arg("rir_channel") = 0, py::arg("noise_channel") = 0,
       py::arg("rir_fs") = 0.0, py::arg("noise_fs") = 0.0,
       "wav-reverberate in memory: returns (output channels, samples) float32.");
+  m.def(
+      "rir_shift_index",
+      [](const py::handle& rir, double fs) {
+        PreparedRir prepared(to_samples(rir, "rir"), fs);
+        return prepared.peak_index();
+      },
+      py::arg("rir"), py::arg("fs"),
+      "The sample wav-reverberate --shift-output=true advances the output by: the RIR's signed maximum\n"
+      "(Kaldi's direct-path estimate).");
 }
 
 }  // namespace tsrir::python

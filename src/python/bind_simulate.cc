@@ -80,6 +80,28 @@ void bind_simulate(py::module_& m) {
       py::arg("line"), py::arg("fs") = 16000.0, py::arg("model") = "gas", py::arg("seed") = 0,
       py::arg("length") = "1.0",
       "Renders one rir-simulate room-list line ('<rir-id> room=.. src=.. mic=.. [key=value ...]').");
+  m.def(
+      "read_room_list",
+      [](const std::string& path) {
+        std::vector<sim::RoomSpec> rooms;
+        {
+          py::gil_scoped_release release;
+          rooms = sim::read_room_list(path);
+        }
+        py::list out;
+        for (const sim::RoomSpec& r : rooms) {
+          py::dict d;
+          d["rir_id"] = r.rir_id;
+          d["room_id"] = r.effective_room_id();
+          d["room_m"] = r.size_m;
+          d["src_m"] = r.source_m;
+          d["mic_m"] = r.mic_m;
+          d["line"] = sim::format_room_list_line(r);
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("path"), "An rir-simulate room list, parsed by the simulator's own parser: one dict per RIR.");
   m.def("model_components_help", &sim::model_components_help, "The simulator's components (rir-simulate --help).");
   m.def("room_list_keys_help", &sim::room_list_keys_help, "The room-list keys (rir-simulate --help).");
 }

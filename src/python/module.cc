@@ -17,5 +17,6 @@ PYBIND11_MODULE(_tsrir, m) {
   tsrir::python::bind_metrics(m);
   tsrir::python::bind_reverberate(m);
   tsrir::python::bind_eq(m);
+  tsrir::python::bind_lists(m);
   tsrir::python::bind_augmenter(m);
 }

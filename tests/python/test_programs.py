@@ -106,15 +106,79 @@ class Reverberate(unittest.TestCase):
         self.check(["--additive-signals=%s/noise.wav" % self.dir, "--snrs=5", "--start-times=0"],
                    rir=None, noise=n1, snr_db=5)
 
-    def test_direct_shift_is_refused_not_faked(self):
-        with self.assertRaises(tsrir.Error):
-            tsrir.reverberate(np.ones(100), np.ones(10), FS, shift="direct")
+    def test_direct_shift(self):
+        """shift="direct": wav-reverberate's output advanced to the direct sound, not to the
+        largest sample. An RIR whose direct sound (sample 40) is weaker than a reflection (sample
+        300): the program's full output (--shift-output=false) read from sample 40 on, bit for bit."""
+        rng = np.random.default_rng(8)
+        h = np.zeros(4000)
+        h[40], h[300] = 0.45, 0.9
+        h[301:] = 0.05 * rng.standard_normal(3699) * np.exp(-np.arange(3699) / 800)
+        write_wav16(self.dir + "/rir_reflection.wav", h, FS)
+        hq = self.load("rir_reflection.wav")[0]
+        self.assertEqual((tsrir.rir_onset_index(hq, FS), tsrir.rir_shift_index(hq, FS)), (40, 300))
+        out = self.dir + "/full.wav"
+        run([program("wav-reverberate"), "--impulse-response=%s/rir_reflection.wav" % self.dir,
+             "--shift-output=false", self.dir + "/speech.wav", out])
+        full, _ = read_wav16(out)
+        speech = self.load("speech.wav")[0]
+        y = tsrir.reverberate(speech, hq, FS, shift="direct")
+        got, _ = read_wav16(tsrir.encode_wav(y, FS))
+        np.testing.assert_array_equal(got[0], full[0, 40:40 + len(speech)])
+        # The peak shift is the program's --shift-output=true: 260 samples later.
+        peak, _ = read_wav16(tsrir.encode_wav(tsrir.reverberate(speech, hq, FS, shift="peak"), FS))
+        np.testing.assert_array_equal(peak[0], full[0, 300:300 + len(speech)])
+
+    def test_direct_shift_on_simulated_rooms(self):
+        """The onset is the direct path (distance / c from the geometry) where the largest sample
+        is a reflection, and equals the peak where the direct sound is the largest."""
+        import math
+        far = dict(room=(6, 4.5, 3), src=(1, 1, 1.5), mic=(5, 3.5, 1.2))
+        h = tsrir.simulate(t60=0.6, length=0.8, **far)
+        expected = math.dist(far["src"], far["mic"]) / 343.0 * FS
+        self.assertLessEqual(abs(tsrir.rir_onset_index(h, FS) - expected), 2)
+        self.assertGreater(tsrir.rir_shift_index(h, FS) - expected, 50)
+        near = tsrir.simulate((6, 4.5, 3), (2, 1.5, 1.6), (4, 3, 1.2), t60=0.6, length=0.8)
+        x = speech_like(FS, FS, 3)
+        self.assertEqual(tsrir.rir_onset_index(near, FS), tsrir.rir_shift_index(near, FS))
+        np.testing.assert_array_equal(tsrir.reverberate(x, near, FS, shift="direct"),
+                                      tsrir.reverberate(x, near, FS, shift="peak"))
 
     def test_errors_are_clear(self):
         with self.assertRaisesRegex(tsrir.Error, "snr_db"):
             tsrir.reverberate(np.ones(100), None, FS, noise=np.ones(50))
         with self.assertRaisesRegex(tsrir.Error, "not finite"):
             tsrir.reverberate(np.array([0.0, float("nan")]), np.ones(10), FS)
+
+
+class GilReleased(unittest.TestCase):
+    def test_python_runs_while_cpp_works(self):
+        """A Python thread keeps running during one long reverberate() call in another thread:
+        the GIL is released. (Held, the main loop would stall for the whole call.)"""
+        import threading
+        import time
+        h = tsrir.simulate((20, 15, 8), (2, 1.5, 1.6), (14, 9, 1.2), fs=48000, t60=2.0, length=8.0)
+        x = np.random.default_rng(0).standard_normal(48000 * 60).astype(np.float32)
+        span = {}
+
+        def work():
+            span["start"] = time.monotonic()
+            tsrir.reverberate(x, h, 48000)
+            span["end"] = time.monotonic()
+
+        t = threading.Thread(target=work)
+        ticks = []
+        t.start()
+        while t.is_alive():
+            ticks.append(time.monotonic())
+        t.join()
+        inside = [v for v in ticks if span["start"] < v < span["end"]]
+        duration = span["end"] - span["start"]
+        self.assertGreater(duration, 0.05)
+        gaps = np.diff([span["start"]] + inside + [span["end"]])
+        # Python's switch interval is 5 ms; a held GIL would leave one gap of the whole call.
+        self.assertLess(gaps.max(), 0.5 * duration, "main thread stalled %.3f s of a %.3f s call"
+                        % (gaps.max(), duration))
 
 
 ROOMS = [

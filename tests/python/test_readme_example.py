@@ -44,6 +44,9 @@ class ReadmeExample(unittest.TestCase):
             self.assertTrue(0.45 < float(m.group(1)) < 0.75, m.group(0))  # asked for 0.6 s
             self.assertIn("'new_id': 'rvb1-utt1'", r.stdout)
             self.assertRegex(r.stdout, r"'rir_id': 'r[12]'")
+            with open(d + "/rir_list_from_lhotse") as f:
+                self.assertEqual(len(f.read().splitlines()), 2)
+            self.assertTrue(os.path.exists(d + "/lhotse_rirs/cuts.jsonl"))
             far, fs = read_wav16(d + "/far.wav")
             self.assertEqual((far.shape, fs), ((1, 3 * 16000), 16000))
         finally:

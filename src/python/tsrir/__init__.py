@@ -8,10 +8,13 @@ PyTorch: tsrir.data.FarFieldDataset (imports torch; `import tsrir` does not).
 import json as _json
 
 from . import _tsrir
-from ._tsrir import (Augmenter, Error, encode_wav, eq_apply, model_components_help, read_audio,
-                     resample, room_list_keys_help, room_list_line, write_wav)
+from ._tsrir import (Augmenter, Error, audio_info, encode_wav, eq_apply, format_rir_list_line,
+                     model_components_help, read_audio, read_noise_list, read_rir_list, read_data_dir,
+                     read_room_list, resample, rir_onset_index, rir_shift_index, room_list_keys_help, room_list_line,
+                     write_wav)
 
-__all__ = ["Augmenter", "Error", "encode_wav", "eq_apply", "metrics", "read_audio", "resample",
+__all__ = ["Augmenter", "Error", "audio_info", "format_rir_list_line", "read_noise_list",
+           "read_rir_list", "read_room_list", "read_data_dir", "rir_onset_index", "rir_shift_index", "encode_wav", "eq_apply", "metrics", "read_audio", "resample",
            "reverberate", "simulate", "write_wav", "room_list_line", "model_components_help",
            "room_list_keys_help"]
 
@@ -67,22 +70,45 @@ def reverberate(speech, rir, fs, noise=None, snr_db=None, shift="peak", normaliz
     speech: 1-D or (channels, n); rir: None (no reverberation), 1-D or (channels, n); noise:
     None, one array or a list of arrays; snr_db, start_time_s, offset_s: one number or one per
     noise. shift: "peak" (wav-reverberate --shift-output=true: advance by the RIR's signed
-    maximum, Kaldi's direct-path estimate) or None (--shift-output=false: the full convolution).
+    maximum, Kaldi's direct-path estimate, which a reflection stronger than the direct sound
+    moves), "direct" (the same output advanced to the direct sound's onset instead:
+    tsrir.rir_onset_index, rir-metrics' ISO onset) or None (--shift-output=false: the full
+    convolution).
     rir_fs / noise_fs: their rates when they differ from fs (resampled as the program does).
     Returns 1-D float32 (2-D with multi_channel_output). tsrir.encode_wav(result, fs) is the
     program's output file byte for byte.
     """
+    direct = shift == "direct"
     if shift in ("peak", True):
         shift_output = True
-    elif shift in (None, False, "none"):
+    elif shift in (None, False, "none") or direct:
         shift_output = False
-    elif shift == "direct":
-        raise Error("shift='direct' is not available: the library's only shift is wav-reverberate's "
-                    "(the RIR's signed maximum, shift='peak'); see README 'From Python'")
     else:
-        raise Error("shift must be 'peak' or None, got %r" % (shift,))
+        raise Error("shift must be 'peak', 'direct' or None, got %r" % (shift,))
+    if direct and rir is not None:
+        if duration_s:
+            raise Error("shift='direct' with duration_s is not supported (use shift='peak' or trim the result)")
+        import numpy as _np
+        rir = _np.asarray(rir, dtype=_np.float32)
+        if rir_fs and rir_fs != fs:  # the same resampler the library would apply inside
+            rir = (resample(rir, rir_fs, fs) if rir.ndim == 1
+                   else _np.stack([resample(c, rir_fs, fs) for c in rir]))
+            rir_fs = None
     out = _tsrir.reverberate_channels(
         speech, rir, float(fs), noise, snr_db, start_time_s, offset_s, shift_output, normalize,
         float(volume), float(duration_s), snr_reference, loop_noise, multi_channel_output,
         input_channel, rir_channel, noise_channel, float(rir_fs or 0), float(noise_fs or 0))
+    if direct and rir is not None:
+        # wav-reverberate's output with its shift moved from the RIR's largest sample to the
+        # direct sound's onset (rir-metrics' ISO onset): the same full-length signal and gain
+        # (the library normalises over the whole convolution either way), another window of it.
+        import numpy as _np
+        n = _np.atleast_2d(_np.asarray(speech)).shape[1]
+        rirs = _np.atleast_2d(rir)
+        windows = []
+        for c in range(out.shape[0]):
+            h = rirs[c] if multi_channel_output else rirs[rir_channel]
+            onset = rir_onset_index(h, fs)
+            windows.append(out[c, onset:onset + n])
+        out = _np.stack(windows)
     return out if multi_channel_output else out[0]
