@@ -2,6 +2,8 @@
 // per set: which effects were detected, with their statistics (for sweeps; see power_sweep.sh).
 //   diagnose_probe --effects=a,b --seed=N [--count=24] [--fix=name=value,...] [--highpass-hz=F]
 //                  [--position-error-m=E] [--size-error=E] [--pre-align-ms=T] [--verbose]
+//                  [--gas-scattering=S]  (the self-consistency check of the scattering fit:
+//                                    "measured" = the baseline simulator itself with scattering S)
 //                  [--strength=K]   (one effect: its hidden parameter set so that its nominal
 //                                    effect size is K x the detector's threshold, see below)
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "diagnose/diagnose.h"
 #include "diagnose/rir_features.h"
+#include "sim/model.h"
 #include "measured_rir_generator.h"
 #include "hidden_effects.h"
 #include "util/strings.h"
@@ -25,6 +28,7 @@ int main(int argc, char** argv) {
   size_t count = 24;
   bool verbose = false;
   double strength = -1.0;
+  double gas_scattering = -1.0;
   testing::HiddenOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -53,6 +57,8 @@ int main(int argc, char** argv) {
       options.size_error = std::stod(value("--size-error="));
     } else if (!value("--pre-align-ms=").empty()) {
       options.pre_align_ms = std::stod(value("--pre-align-ms="));
+    } else if (!value("--gas-scattering=").empty()) {
+      gas_scattering = std::stod(value("--gas-scattering="));
     } else if (!value("--strength=").empty()) {
       strength = std::stod(value("--strength="));
     } else if (a == "--verbose") {
@@ -116,7 +122,17 @@ int main(int argc, char** argv) {
     }
     for (const auto& [name, v] : options.fixed) std::cout << "fixed " << name << " = " << v << "\n";
   }
-  const auto set = testing::make_hidden_set(rooms, effects, seed, 16000.0, 1.0, options);
+  auto set = testing::make_hidden_set(rooms, effects, seed, 16000.0, 1.0, options);
+  if (gas_scattering >= 0.0) {
+    const sim::Model gas = sim::Model::parse("gas");
+    for (size_t i = 0; i < rooms.size(); ++i) {
+      sim::RoomSpec real = rooms[i];
+      real.scattering.fill(gas_scattering);
+      set.measured[i] = gas.render(real, 16000.0, 16000, 1000 + seed);
+      set.measured[i].id = rooms[i].rir_id;
+    }
+    set.truth = {{"scattering", gas_scattering}};
+  }
   if (verbose) {
     // Energy envelope of the first "measured" RIR (dB per 50 ms window) against the baseline.
     const Signal& m = set.measured[0];

@@ -8,7 +8,8 @@
 # swept over their parameter, not threshold-calibrated: mode level 20 log10 K dB, scattering
 # 0.1 + 0.85 K / 3). Power = fraction of sets where the effect is detected; false alarms = fraction
 # of null sets (nothing hidden) reporting the effect, and of hidden-effect sets reporting another.
-#   bench/diagnose/power_sweep.sh [build-dir] [seeds per point (5)] [null sets (20)]
+#   bench/diagnose/power_sweep.sh [build-dir] [seeds per point (5)] [null sets (20)] [raw-dir]
+# (raw-dir keeps the per-set lines; a probe that fails is reported on stderr and not counted.)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build}
@@ -18,16 +19,24 @@ strengths="0.5 1 2 3"
 effects="time_offset band_absorption air_absorption transducer_response noise_floor room_modes diffuse_scattering"
 ninja -C "$build" diagnose_probe >/dev/null
 probe="$build/bin/diagnose_probe"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+if [ -n "${4:-}" ]; then
+  tmp=$4
+  mkdir -p "$tmp"
+  : > "$tmp/null"
+  : > "$tmp/hidden"
+else
+  tmp=$(mktemp -d)
+  trap 'rm -rf "$tmp"' EXIT
+fi
 echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; $seeds seeds per point, $nulls null sets"
 for s in $(seq 1 "$nulls"); do
-  "$probe" --count=48 --seed=$((500 + s)) 2>/dev/null | grep '^seed' >> "$tmp/null"
+  "$probe" --count=48 --seed=$((500 + s)) 2>/dev/null | grep '^seed' >> "$tmp/null" || echo "null set $s failed" >&2
 done
 for e in $effects; do
   for k in $strengths; do
     for s in $(seq 1 "$seeds"); do
-      "$probe" --count=48 --seed=$((600 + s)) --effects=$e --strength=$k 2>/dev/null | grep '^seed' | sed "s/^/$e $k /" >> "$tmp/hidden"
+      "$probe" --count=48 --seed=$((600 + s)) --effects=$e --strength=$k 2>/dev/null | grep '^seed' | sed "s/^/$e $k /" >> "$tmp/hidden" ||
+        echo "$e $k seed $s failed" >&2
     done
   done
 done

@@ -14,7 +14,7 @@ trap 'rm -rf "$tmp"' EXIT
 echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; draws k = 0..$((n - 1))"
 for k in $(seq 0 $((n - 1))); do
   TSRIR_DIAGNOSE_SEED_OFFSET=$k "$build/bin/diagnose_test" --gtest_filter='Catalog/*:Confounds/*' 2>/dev/null |
-    grep -E '^\[ +(OK|FAILED) +\] (Catalog|Confounds)/' | sed -E 's/^\[ +(OK|FAILED) +\] ([A-Za-z]+)\/[^/]*\/([a-z0-9_]+).*/\2 \3 \1/' >> "$tmp/all" || true
+    grep -E '^\[ +(OK|FAILED) +\] (Catalog|Confounds)/.* ms\)$' | sed -E 's/^\[ +(OK|FAILED) +\] ([A-Za-z]+)\/[^/]*\/([a-z0-9_]+).*/\2 \3 \1/' >> "$tmp/all" || true
 done
 echo
 echo "| suite | case | draws passed |"
