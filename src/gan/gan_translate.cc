@@ -94,7 +94,15 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
       rir.id = refs[begin + i].id;
       rir.sample_rate_hz = kGanSampleRateHz;
       const size_t length = o.keep_length < 0 ? inputs[i].length : size_t(o.keep_length);
-      const float scale = o.restore_level ? float(inputs[i].peak) : 1.0f;
+      float scale = o.restore_level ? float(inputs[i].peak) : 1.0f;
+      if (settings.generator == "residual") {
+        // A residual output is its peak-normalised input plus a correction, so its peak can pass
+        // 1: scale it back to the largest 16-bit value (32767/32768), the training data's peak.
+        constexpr float kFullScale = 32767.0f / 32768.0f;
+        float peak = 0.0f;
+        for (size_t k = 0; k < length; ++k) peak = std::max(peak, std::abs(out[k]));
+        if (peak > kFullScale) scale *= kFullScale / peak;
+      }
       rir.samples.resize(length);
       for (size_t k = 0; k < length; ++k) rir.samples[k] = out[k] * scale;
       writer.add(rir, refs[begin + i].room_id);

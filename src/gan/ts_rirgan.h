@@ -15,7 +15,8 @@ struct GanTrainOptions {
   std::string model_dir;        // settings.txt, checkpoint.pt, loss_log.csv
   long long steps = 1000;       // total training iterations (a resumed run continues to this count)
   int width = 64;               // model width `dim` (64 = the paper's model)
-  // Defaults: the configuration that passes the translation-fidelity suite (tests/gan, issue 17);
+  // Defaults: the best configuration found so far for the translation-fidelity suite (tests/gan,
+  // issue 17; not yet passing, bench/RESULTS.md);
   // conf/ts-rirgan-paper.conf restores the paper's. Departures are marked "paper:".
   std::string decoder = "light";  // generator up path: "original" (16w,8w,4w; paper's code) | "light" (4w,2w,w)
   int batch_size = 64;          // the paper's batch
