@@ -138,6 +138,17 @@ mark_done() { { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; } || die "cann
 # The bytes of whichever of the files exist (a stage signature's ingredients); never fails, so a
 # missing file cannot end the script silently under `set -e -o pipefail` inside "$(...)".
 content_of() { local f; for f in "$@"; do if [ -f "$f" ]; then cat "$f"; fi; done; return 0; }
+# Removes the files tsrir wrote into a directory (those its .tsrir-owned marker lists), the marker,
+# and the directory if nothing else is left: never a file of the user's (docs/robustness.md).
+remove_tsrir_files() {
+  local dir=$1 f
+  [ -f "$dir/.tsrir-owned" ] || return 0
+  while IFS=$'\t' read -r f _; do
+    case $f in '#'*|''|*/*) ;; *) rm -f -- "$dir/$f" ;; esac
+  done <"$dir/.tsrir-owned"
+  rm -f -- "$dir/.tsrir-owned"
+  rmdir -- "$dir" 2>/dev/null || log "kept $dir: it holds files tsrir did not write"
+}
 require() { for f in "$@"; do [ -s "$f" ] || die "missing input $f (run the earlier stages first)"; done; }
 need_program() {
   for p in "$@"; do
@@ -449,7 +460,7 @@ if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
         --snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
       check_data_dir "$out"
       # Pipes regenerate the audio: wavs of an earlier --write-wavs run would be stale.
-      [ "$write_wavs" = true ] || rm -rf "${data:?}/wav/$name"
+      [ "$write_wavs" = true ] || remove_tsrir_files "$data/wav/$name"
       mkdir -p "$exp/farfield"
       mark_done "$exp/farfield/$name.done" "$sig"
     fi
