@@ -287,7 +287,9 @@ if [ $stage -le 2 ] && [ $stop_stage -ge 2 ]; then
   if is_done "$out/.done" "$sig"; then
     log "stage 2: GAS RIRs already simulated"
   else
-    rm -rf "$out"; mkdir -p "$out/split$nj"
+    # Only what this stage writes goes (a user's file in $out stays; docs/robustness.md).
+    rm -rf "$out/split$nj" "$out/log"; rm -f "$out/setups.txt" "$out/room_list" "$out/rir.scp" "$out/rir_list"
+    mkdir -p "$out/split$nj"
     # The metadata table (rir-id room-id Lx Ly Lz sx sy sz mx my mz) -> one room-list line per RIR
     # with random absorption, seeded by (seed, rir id) (TS-RIR sec. 3.3: "random surface
     # absorption/reflection coefficients ... because we do not have room-material information").
@@ -406,7 +408,7 @@ if [ $stage -le 6 ] && [ $stop_stage -ge 6 ]; then
   begin_stage 6 "Table 1: mean T60, DRR, EDT, C50 (CTE) of each test-split set vs the real test RIRs (rir-metrics --definition=$metrics_definition)"
   need_program rir-metrics
   t1=$exp/table1
-  rm -rf "$t1"; mkdir -p "$t1/sets"
+  rm -rf "$t1/sets"; rm -f "$t1/table1.txt" "$t1/rir-metrics.log" "$t1/section.md"; mkdir -p "$t1/sets"
   require "$rirs/real_test/rir.scp"
   cp "$rirs/real_test/rir.scp" "$t1/sets/real"
   labels=()
