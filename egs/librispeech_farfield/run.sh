@@ -160,6 +160,17 @@ mark_done() { { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; } || die "cann
 # The bytes of whichever of the files exist (a stage signature's ingredients); never fails, so a
 # missing file cannot end the script silently under `set -e -o pipefail` inside "$(...)".
 content_of() { local f; for f in "$@"; do if [ -f "$f" ]; then cat "$f"; fi; done; return 0; }
+# Removes the files tsrir wrote into a directory (those its .tsrir-owned marker lists), the marker,
+# and the directory if nothing else is left: never a file of the user's (docs/robustness.md).
+remove_tsrir_files() {
+  local dir=$1 f
+  [ -f "$dir/.tsrir-owned" ] || return 0
+  while IFS=$'\t' read -r f _; do
+    case $f in '#'*|''|*/*) ;; *) rm -f -- "$dir/$f" ;; esac
+  done <"$dir/.tsrir-owned"
+  rm -f -- "$dir/.tsrir-owned"
+  rmdir -- "$dir" 2>/dev/null || log "kept $dir: it holds files tsrir did not write"
+}
 require() { for f in "$@"; do [ -s "$f" ] || die "missing input $f (run the earlier stages first)"; done; }
 need_program() {
   for p in "$@"; do
@@ -307,7 +318,9 @@ if [ $stage -le 2 ] && [ $stop_stage -ge 2 ]; then
   if is_done "$out/.done" "$sig"; then
     log "stage 2: GAS RIRs already simulated"
   else
-    rm -rf "$out"; mkdir -p "$out/split$nj"
+    # Only what this stage writes goes (a user's file in $out stays; docs/robustness.md).
+    rm -rf "$out/split$nj" "$out/log"; rm -f "$out/setups.txt" "$out/room_list" "$out/rir.scp" "$out/rir_list"
+    mkdir -p "$out/split$nj"
     # The metadata table (rir-id room-id Lx Ly Lz sx sy sz mx my mz) -> one room-list line per RIR
     # with random absorption, seeded by (seed, rir id) (TS-RIR sec. 3.3: "random surface
     # absorption/reflection coefficients ... because we do not have room-material information").
@@ -426,7 +439,7 @@ if [ $stage -le 6 ] && [ $stop_stage -ge 6 ]; then
   begin_stage 6 "Table 1: mean T60, DRR, EDT, C50 (CTE) of each test-split set vs the real test RIRs (rir-metrics --definition=$metrics_definition)"
   need_program rir-metrics
   t1=$exp/table1
-  rm -rf "$t1"; mkdir -p "$t1/sets"
+  rm -rf "$t1/sets"; rm -f "$t1/table1.txt" "$t1/rir-metrics.log" "$t1/section.md"; mkdir -p "$t1/sets"
   require "$rirs/real_test/rir.scp"
   cp "$rirs/real_test/rir.scp" "$t1/sets/real"
   labels=()
@@ -485,7 +498,7 @@ if [ $stage -le 7 ] && [ $stop_stage -ge 7 ]; then
         --background-snrs "$snrs" --random-seed "$seed" --num-threads "$num_threads" ${wavs[@]+"${wavs[@]}"} "$in" "$out"
       check_data_dir "$out"
       # Pipes regenerate the audio: wavs of an earlier --write-wavs run would be stale.
-      [ "$write_wavs" = true ] || rm -rf "${data:?}/wav/$name"
+      [ "$write_wavs" = true ] || remove_tsrir_files "$data/wav/$name"
       mkdir -p "$exp/farfield"
       mark_done "$exp/farfield/$name.done" "$sig"
     fi

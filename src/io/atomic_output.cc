@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "io/owned_output.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -43,6 +44,7 @@ AtomicTextFile::AtomicTextFile(const std::string& final_path) : final_path_(fina
     to_stdout_ = true;
     return;
   }
+  check_file_not_input(final_path);
   temp_path_ = make_temp_path(final_path);
   file_.open(temp_path_, std::ios::out | std::ios::trunc | std::ios::binary);
   if (!file_) {

@@ -370,6 +370,26 @@ void check_output_not_input(const std::string& output_dir) {
   }
 }
 
+void check_file_not_input(const std::string& path) {
+  if (path.empty() || path == "-" || path.find("/" + kStagingPrefix + ".tmp.") != std::string::npos) return;
+  InputRegistry& r = inputs();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  for (const std::string& rx : r.pending) resolve_rx(r, rx);
+  r.pending.clear();
+  if (r.seen.empty()) return;
+  const fs::path p(path);
+  std::string real = (fs::path(real_parent_of(r, p)) / p.filename()).string();
+  std::error_code ec;
+  if (!r.seen.count(real) && fs::is_symlink(fs::symlink_status(path, ec))) {
+    const std::string target = fs::canonical(path, ec).string();
+    if (!ec) real = target;
+  }
+  if (r.seen.count(real)) {
+    throw Error("output file " + path + " is an input of this run (real path " + real +
+                "): a program never writes over its inputs; choose another output name");
+  }
+}
+
 OwnedOutputDir::OwnedOutputDir(const std::string& final_dir, const std::string& owner)
     : final_dir_(final_dir), owner_(owner_key(owner)) {
   while (final_dir_.size() > 1 && final_dir_.back() == '/') final_dir_.pop_back();

@@ -40,6 +40,10 @@ void clear_noted_inputs();  // for tests
 // Throws Error when `output_dir` is, contains or lies inside a noted input.
 void check_output_not_input(const std::string& output_dir);
 
+// Throws Error when the file `path` is a noted input (real paths); AtomicTextFile and write_wav call
+// it for every file they are asked to write outside a staging directory.
+void check_file_not_input(const std::string& path);
+
 // The name of the marker file.
 extern const char* const kOwnedMarkerName;
 

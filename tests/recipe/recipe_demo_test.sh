@@ -77,6 +77,12 @@ sort -r "$tmp/tampered/utt2spk" -o "$tmp/tampered/utt2spk"
 check "the validator rejects a tampered copy (utt2spk unsorted)" \
   bash -c "! validate-data-dir --no-feats '$tmp/tampered' 2>/dev/null"
 
+# A user's own files beside the recipe's outputs survive every later run (issue 14: a stage creates
+# or replaces only what it writes): table 1's dir (redone each run), the GAN model dir (retrained
+# below), a --write-wavs dir (emptied by the pipe-mode run below), the GAS set's dir.
+sentinels="$w/exp/table1/MY_NOTES $w/exp/tsrirgan/MY_NOTES $data/wav/test_clean_rvb_real/MY_NOTES $data/rirs/gas_all/MY_NOTES"
+for f in $sentinels; do echo "mine: $f" >"$f"; done
+
 # Idempotence: a second run skips every completed step.
 start=$SECONDS
 "$recipe/run.sh" --demo --demo-size tiny --data "$w/data" --exp "$w/exp" --results "$w/RESULTS.md" \
@@ -112,6 +118,10 @@ while read -r id rx; do
   check "pipe mode: $id's pipe reproduces its wav sample for sample" test "$a" = "$b"
 done <"$data/test_clean_rvb_real/wav.scp"
 check "pipe mode: a valid data dir" validate-data-dir --no-feats "$data/test_clean_rvb_real" 2>/dev/null
+
+for f in $sentinels; do
+  check "a user's file survives the re-runs: ${f#$w/}" bash -c "test \"\$(cat '$f')\" = 'mine: $f'"
+done
 
 # Missing inputs fail loudly: stage 3 without the real RIR lists.
 rm "$data/rirs/real_train/rir_list"

@@ -316,6 +316,9 @@ TEST_F(DataSafety, OutputsOverInputsAreRefused) {
   if (!need("rir-eq").empty()) {
     expect_refused(run({need("rir-eq"), "apply", "eq.model", "lists/rir.scp", "rirs_link"}), "contains the input");
     expect_refused(run({need("rir-eq"), "apply", "--overwrite", "eq.model", "rirs/rir.scp", "rirs/r0.wav"}), "is the input");
+    // A single output file that is an input (the list itself, or through a symlink).
+    expect_refused(run({need("rir-eq"), "fit", "rirs/rir.scp", "rirs/rir.scp"}), "is an input");
+    expect_refused(run({need("rir-eq"), "fit", "rirs/rir.scp", "rirs_link/r1.wav"}), "is an input");
     expect_refused(run({need("rir-eq"), "apply", "eq.model", "rirs/rir.scp", "."}), "contains the input");
   }
   EXPECT_FALSE(fs::exists(path("o")));
