@@ -33,7 +33,7 @@ while [ $# -gt 1 ] && [[ "$1" == --* ]]; do
   esac
   shift 2
 done
-[ $# -eq 1 ] || { sed -n '2,14p' "$0" >&2; exit 1; }
+[ $# -eq 1 ] || { sed -n '2,15p' "$0" >&2; exit 1; }
 out=$1
 die() { echo "make_tts_corpus.sh: ERROR: $*" >&2; exit 1; }
 command -v bible >/dev/null || die "the sentence source 'bible' is missing: apt-get install bible-kjv"
