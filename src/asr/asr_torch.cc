@@ -365,6 +365,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
                  std::to_string(p.epoch + 1) + " batch " + std::to_string(p.batch) + " written; --resume continues");
         result.epochs_done = p.epoch;
         result.steps_done = p.step;
+        result.last_epoch_loss = p.last_epoch_loss;
         result.train_s = seconds_since(start);
         result.peak_rss_mb = peak_rss_mb();
         return result;

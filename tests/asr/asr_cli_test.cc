@@ -108,6 +108,15 @@ TEST(AsrCli, ResumeContinuesExactly) {
   RunResult r = run(base + d + "/split --epochs=3 --resume", d);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(loss_rows(d + "/straight/loss_log.csv"), loss_rows(d + "/split/loss_log.csv"));
+  // Mid-epoch: --max-minutes stops after the first step (a 6 ms budget), the checkpoint records
+  // the batch, and the resumed run repeats nothing and skips nothing.
+  r = run(base + d + "/mid --epochs=3 --max-minutes=0.0001", d);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("--max-minutes reached"), std::string::npos) << r.err;
+  EXPECT_LT(loss_rows(d + "/mid/loss_log.csv").size(), 5u);
+  r = run(base + d + "/mid --epochs=3 --resume", d);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(loss_rows(d + "/straight/loss_log.csv"), loss_rows(d + "/mid/loss_log.csv"));
   EXPECT_EQ(loss_rows(d + "/straight/loss_log.csv").size(), 15u);  // 3 epochs x 5 batches
   ASSERT_EQ(run(kBin + "/asr-decode " + d + "/straight " + d + "/test " + d + "/dec_a", d).status, 0);
   ASSERT_EQ(run(kBin + "/asr-decode " + d + "/split " + d + "/test " + d + "/dec_b", d).status, 0);

@@ -9,14 +9,14 @@
 # Usage: make_tts_corpus.sh [options] <out-dir>
 #   --train-voices "espeak:en-us+m3 ..."  --test-voices "..."  voices as engine:name, engine one of
 #       espeak (espeak-ng voice+variant) or flite (flite -voice name; needs the flite package)
-#   --utts-per-train-voice N (60)  --utts-per-test-voice N (40)  --vocab-size N (500)
+#   --utts-per-train-voice N (50)  --utts-per-test-voice N (40)  --vocab-size N (500)
 #   Each utterance is peak-normalised to -3 dBFS at 16 kHz, 16 bit.
 #   --min-words N (4)  --max-words N (9)  --books "Gen1:1-50:26 ..."  --seed N (0)  --nj N (2)
-# e.g.: local/asr/make_tts_corpus.sh --utts-per-train-voice 60 data/asr/tts
+# e.g.: local/asr/make_tts_corpus.sh --utts-per-train-voice 50 data/asr/tts
 set -euo pipefail
 train_voices="espeak:en-us+m3 espeak:en-gb+f2 espeak:en-us+m1 espeak:en+f4 espeak:en-gb-scotland+m2 espeak:en-029+m4 espeak:en-gb-x-rp+f3 espeak:en-us-nyc+m6"
 test_voices="espeak:en-us+f1 espeak:en-gb+m7 espeak:en-gb-x-gbclan+f5"
-utts_per_train_voice=60
+utts_per_train_voice=50
 utts_per_test_voice=40
 vocab_size=500
 min_words=4
@@ -33,7 +33,7 @@ while [ $# -gt 1 ] && [[ "$1" == --* ]]; do
   esac
   shift 2
 done
-[ $# -eq 1 ] || { sed -n '2,14p' "$0" >&2; exit 1; }
+[ $# -eq 1 ] || { sed -n '2,15p' "$0" >&2; exit 1; }
 out=$1
 die() { echo "make_tts_corpus.sh: ERROR: $*" >&2; exit 1; }
 command -v bible >/dev/null || die "the sentence source 'bible' is missing: apt-get install bible-kjv"
