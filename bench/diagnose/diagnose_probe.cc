@@ -6,8 +6,13 @@
 //                                    "measured" = the baseline simulator itself with scattering S)
 //                  [--strength=K]   (one effect: its hidden parameter set so that its nominal
 //                                    effect size is K x the detector's threshold, see below)
+//                  [--write-set=DIR] (write the set as rir-diagnose's inputs, DIR/rooms.txt,
+//                                    DIR/rir.scp and float WAVs, instead of diagnosing it: for
+//                                    running the program itself on a test set)
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <set>
 #include <sstream>
@@ -15,6 +20,8 @@
 
 #include "diagnose/diagnose.h"
 #include "diagnose/rir_features.h"
+#include "io/wav_writer.h"
+#include "sim/room_list.h"
 #include "sim/model.h"
 #include "measured_rir_generator.h"
 #include "hidden_effects.h"
@@ -29,6 +36,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   double strength = -1.0;
   double gas_scattering = -1.0;
+  std::string write_set;
   testing::HiddenOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -61,6 +69,8 @@ int main(int argc, char** argv) {
       gas_scattering = std::stod(value("--gas-scattering="));
     } else if (!value("--strength=").empty()) {
       strength = std::stod(value("--strength="));
+    } else if (!value("--write-set=").empty()) {
+      write_set = value("--write-set=");
     } else if (a == "--verbose") {
       verbose = true;
     } else {
@@ -132,6 +142,20 @@ int main(int argc, char** argv) {
       set.measured[i].id = rooms[i].rir_id;
     }
     set.truth = {{"scattering", gas_scattering}};
+  }
+  if (!write_set.empty()) {
+    std::filesystem::create_directories(write_set);
+    std::ofstream list(write_set + "/rooms.txt"), scp(write_set + "/rir.scp");
+    AudioWriteOptions wav;
+    wav.format = SampleFormat::kFloat32;
+    for (size_t i = 0; i < set.stated.size(); ++i) {
+      const std::string file = write_set + "/" + set.stated[i].rir_id + ".wav";
+      write_wav(file, set.measured[i], wav);
+      list << sim::format_room_list_line(set.stated[i]) << "\n";
+      scp << set.stated[i].rir_id << " " << std::filesystem::absolute(file).string() << "\n";
+    }
+    if (!list || !scp) { std::cerr << "cannot write " << write_set << "\n"; return 1; }
+    return 0;
   }
   if (verbose) {
     // Energy envelope of the first "measured" RIR (dB per 50 ms window) against the baseline.

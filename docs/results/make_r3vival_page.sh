@@ -16,6 +16,10 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$root/docs/results/make_r3vival_inputs.sh" "$data" "$tmp/in" >&2
 "$build/bin/rir-diagnose" --fs=16000 --model=gas --seed=1 --num-threads=2 \
-    "$tmp/in/rooms.txt" "$tmp/in/rir.scp" "$out" >&2
+    "$tmp/in/rooms.txt" "$tmp/in/rir.scp" "$tmp/out" >&2
+# rir-diagnose writes into a directory of its own; its three files then replace the ones in
+# <findings-dir> (the committed findings.json and extended_models, the uncommitted report.html).
+mkdir -p "$out"
+for f in findings.json extended_models report.html; do cp "$tmp/out/$f" "$out/$f.tmp.$$" && mv "$out/$f.tmp.$$" "$out/$f"; done
 python3 "$root/docs/results/render_r3vival_page.py" "$out/findings.json" "$page"
 echo "$0: wrote $page and $out/" >&2

@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "diagnose/decision_rules.h"
 #include "diagnose/extension_fit.h"
 #include "diagnose/report_html.h"
 #include "diagnose/set_statistics.h"
@@ -23,8 +24,6 @@
 
 namespace tsrir::diagnose {
 namespace {
-
-std::string num(double v, int digits = 3) { return std::isfinite(v) ? format_double(v, digits) : "n/a"; }
 
 // Per-RIR absolute errors of one simulated RIR against its measurement, per gain metric.
 struct MetricDef {
@@ -77,7 +76,6 @@ void split_ids(const std::vector<sim::RoomSpec>& rooms, std::vector<size_t>* fit
 // The observations of the RIRs `idx` (in that order).
 SetObservations subset(const SetObservations& all, const std::vector<size_t>& idx) {
   SetObservations s;
-  s.room_modes_ruled_out = all.room_modes_ruled_out;
   for (size_t i : idx) {
     s.rooms.push_back(all.rooms[i]);
     s.measured.push_back(all.measured[i]);
@@ -94,60 +92,11 @@ SetObservations subset(const SetObservations& all, const std::vector<size_t>& id
   return s;
 }
 
-Finding* finding(Diagnosis* d, const std::string& effect) {
-  for (Finding& f : d->findings) {
-    if (f.effect == effect) return &f;
-  }
-  return nullptr;
-}
-
-// Lower absorption also makes the image sources (which are the rigid-room modal sum, cut at the
-// transition time) more modal: when band_absorption and room_modes are both detected, room_modes
-// is decided again against simulations with the band refit (all rooms, all bands), and band
-// absorption then again with room_modes' verdict. This is the explain-away order: a per-band
-// absorption error is the simpler cause.
-void recheck_modes_after_band_refit(SetObservations& obs, const DiagnoseOptions& options, Diagnosis* d) {
-  if (!finding(d, "band_absorption")->detected || !finding(d, "room_modes")->detected) return;
-  log_info("re-deciding room_modes against band-refitted simulations");
-  std::map<std::string, std::vector<size_t>> by_room;
-  for (size_t i = 0; i < obs.rooms.size(); ++i) by_room[room_group(obs.rooms[i])].push_back(i);
-  std::map<std::string, std::string> spec;
-  for (const auto& [room, idx] : by_room) {
-    const sim::BandValues scale = refine_band_scales(obs, idx, band_absorption_scales(obs, idx, AirFit{}, 0.0),
-                                                     options.baseline_model, options, 3, 0.0);
-    spec[room] = options.baseline_model + "+" + band_absorption_spec(scale);
-    log_info("band refit of " + room + ": " + spec[room]);
-  }
-  SetObservations refit = obs;
-  parallel_for(obs.rooms.size(), options.num_threads, [&](size_t i) {
-    const std::string& s = spec.at(room_group(obs.rooms[i]));
-    const Signal a = render_rir(s, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed);
-    const Signal b = render_rir(s, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed + 1);
-    refit.sim_a[i] = compute_features(a, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
-    refit.sim_b[i] = compute_features(b, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
-  });
-  const std::vector<Finding> again = detect_effects(refit, nullptr);
-  for (const Finding& f : again) {
-    if (f.effect != "room_modes") continue;
-    Finding* modes = finding(d, "room_modes");
-    *modes = f;
-    modes->evidence += " (decided against simulations with the per-band absorption refit, which also "
-                       "strengthens the image sources' modal structure)";
-  }
-  if (!finding(d, "room_modes")->detected) {
-    // band_absorption decided again without leaving the low bands to room_modes.
-    obs.room_modes_ruled_out = true;
-    const std::vector<Finding> second = detect_effects(obs, &d->bands);
-    for (const Finding& f : second) {
-      if (f.effect == "band_absorption" || f.effect == "air_absorption") *finding(d, f.effect) = f;
-    }
-  }
-}
-
 }  // namespace
 
 Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vector<Signal>& measured_in,
-                       const DiagnoseOptions& options, const std::vector<std::string>& measured_where) {
+                       const DiagnoseOptions& options, const std::vector<std::string>& measured_where,
+                       const EffectRegistry& registry) {
   const auto start = std::chrono::steady_clock::now();
   sim::register_extension_components();
   const sim::Model baseline = sim::Model::parse(options.baseline_model);
@@ -210,6 +159,7 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
   });
 
   Diagnosis d;
+  d.registry = &registry;
   d.sample_rate_hz = options.sample_rate_hz;
   d.num_rirs = n;
   d.baseline_model = options.baseline_model;
@@ -219,17 +169,14 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
   split_ids(obs.rooms, &fit, &eval);
   for (size_t i : fit) d.fit_ids.push_back(obs.rooms[i].rir_id);
   for (size_t i : eval) d.eval_ids.push_back(obs.rooms[i].rir_id);
-  SetObservations fit_obs = subset(obs, fit);
-  d.findings = detect_effects(fit_obs, &d.bands);
-  recheck_modes_after_band_refit(fit_obs, options, &d);
-  if (fit_obs.room_modes_ruled_out) obs.room_modes_ruled_out = true;
+  d.findings = decide_effects(registry, subset(obs, fit), options);
   for (size_t i = 0; i < n; ++i) {
     d.flight_ms.push_back(1e3 * obs.rooms[i].source_mic_distance_m() / obs.rooms[i].speed_of_sound_m_s);
     d.onset_meas_ms.push_back(1e3 * obs.meas[i].onset_s);
     d.onset_sim_ms.push_back(1e3 * obs.sim_a[i].onset_s);
   }
   log_info("fitting the extensions of the detected effects on " + std::to_string(fit.size()) + " RIRs");
-  d.extended_model_by_room = fit_extensions(obs, fit, options, &d.findings);
+  d.extended_model_by_room = fit_extensions(registry, obs, fit, options, &d.findings);
 
   // Gain on the eval part: baseline and extended rendered with a seed no fit has seen.
   log_info("evaluating baseline and extended models on " + std::to_string(eval.size()) + " held-out RIRs");
@@ -314,6 +261,9 @@ void write_findings_json(const Diagnosis& d, std::ostream& out) {
     w.field("value", f.statistic).field("null_value", f.null_statistic).field("threshold", f.threshold);
     w.field("unit", f.statistic_unit);
     w.end_object();
+    w.key("thresholds").begin_object();
+    for (const Threshold& t : f.thresholds) w.field(t.name, t.value);
+    w.end_object();
     w.end_object();
   }
   w.end_array();
@@ -350,16 +300,9 @@ void write_findings_json(const Diagnosis& d, std::ostream& out) {
   for (const std::string& id : d.eval_ids) w.value(id);
   w.end_array();
   w.end_object();
+  // The thresholds every decision shares (each effect's own are in its finding).
   w.key("thresholds").begin_object();
-  const DetectionThresholds& t = kThresholds;
-  w.field("alpha", t.alpha).field("time_offset_min_ms", t.time_offset_min_ms);
-  w.field("time_offset_null_mads", t.time_offset_null_mads).field("time_offset_rirs_rate", t.time_offset_rirs_rate);
-  w.field("noise_floor_min_db", t.noise_floor_min_db).field("noise_floor_flat_db", t.noise_floor_flat_db);
-  w.field("room_modes_min_db", t.room_modes_min_db).field("scattering_min_echo_density", t.scattering_min_echo_density);
-  w.field("transducer_min_db", t.transducer_min_db).field("transducer_min_correlation", t.transducer_min_correlation);
-  w.field("band_min_rate_ratio", t.band_min_rate_ratio).field("air_min_top_rate_ratio", t.air_min_top_rate_ratio);
-  w.field("air_max_chi2_fraction", t.air_max_chi2_fraction).field("air_min_chi2_improvement", t.air_min_chi2_improvement);
-  w.field("gain_alpha", kGainAlpha);
+  w.field("alpha", kDecision.alpha).field("gain_alpha", kDecision.gain_alpha);
   w.end_object();
   w.key("set").begin_object();
   w.field("num_rirs", d.num_rirs).field("sample_rate_hz", d.sample_rate_hz).field("seconds", d.seconds);

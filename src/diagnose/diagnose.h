@@ -1,28 +1,21 @@
 // rir-diagnose: simulate the measured set-ups with the toolkit's model, show where the simulation
-// departs from the measurements, name the physical cause (effects.h), extend the model with it
-// (sim/extension_components.h), and measure the gain on RIRs the fit did not see.
+// departs from the measurements, name the physical cause (the effect registry, effect.h), extend
+// the model with it (sim/extension_components.h), and measure the gain on RIRs the fit did not see.
 #pragma once
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "diagnose/effects.h"
+#include "diagnose/diagnose_options.h"
+#include "diagnose/effect.h"
 #include "io/signal.h"
 #include "sim/room.h"
 
 namespace tsrir::diagnose {
 
-struct DiagnoseOptions {
-  double sample_rate_hz = 16000.0;   // measured RIRs are resampled to this rate
-  std::string baseline_model = "gas";
-  uint64_t seed = 1;                 // seeds seed (A), seed+1 (B, null calibration), seed+2 (evaluation)
-  int num_threads = 2;
-  size_t max_scattering_fit_rirs = 24;  // RIRs rendered per scattering value when refitting it
-};
-
 // A held-out gain counts when the paired test gives p below this (and the gain is positive).
-constexpr double kGainAlpha = 0.01;
+constexpr double kGainAlpha = kDecision.gain_alpha;
 
 struct MetricGain {
   std::string name;
@@ -45,8 +38,8 @@ struct ExampleCurves {
 };
 
 struct Diagnosis {
-  std::vector<Finding> findings;       // catalog order
-  BandSummary bands;
+  const EffectRegistry* registry = nullptr;  // the catalog the findings follow
+  std::vector<Finding> findings;       // registry (catalog) order
   std::string baseline_model;
   std::map<std::string, std::string> extended_model_by_room;
   std::vector<MetricGain> gains;
@@ -64,7 +57,8 @@ struct Diagnosis {
 // measured RIR: where it was listed) prefixes the error of a measured RIR that cannot be
 // analysed (silent, too short).
 Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vector<Signal>& measured,
-                       const DiagnoseOptions& options, const std::vector<std::string>& measured_where = {});
+                       const DiagnoseOptions& options, const std::vector<std::string>& measured_where = {},
+                       const EffectRegistry& registry = effect_registry());
 
 // findings.json, report.html and extended_models (<room-id> <model spec> per line) into out_dir
 // (replaced atomically); returns the stdout summary.

@@ -41,29 +41,6 @@ std::vector<std::vector<double>> spectrogram_db(const Signal& s, double* peak_db
   return out;
 }
 
-std::vector<double> band_axis() {
-  return std::vector<double>(kOctaveCentersHz.begin(), kOctaveCentersHz.end());
-}
-
-std::vector<double> pct(const BandValues& log_ratio) {
-  std::vector<double> out;
-  for (double v : log_ratio) out.push_back(std::isfinite(v) ? 100.0 * std::expm1(v) : NAN);
-  return out;
-}
-
-void range_of(const std::vector<std::vector<double>>& series, double* lo, double* hi, double pad) {
-  *lo = INFINITY;
-  *hi = -INFINITY;
-  for (const auto& s : series) {
-    for (double v : s) {
-      if (std::isfinite(v)) { *lo = std::min(*lo, v); *hi = std::max(*hi, v); }
-    }
-  }
-  if (!std::isfinite(*lo)) { *lo = -1; *hi = 1; }
-  *lo -= pad;
-  *hi += pad;
-}
-
 }  // namespace
 
 void write_report_html(const Diagnosis& d, const std::string& command_line, std::ostream& out) {
@@ -118,83 +95,10 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
   }
   out << "</table>\n";
 
+  // Each effect's plots over the set, in catalog order.
+  const auto& effects = (d.registry ? *d.registry : effect_registry()).effects();
   out << "<h2>Per-band departures (fit RIRs)</h2><div class='plots'>\n";
-  {
-    PlotSpec p;
-    p.title = "Decay rate, measured vs simulated (T30)";
-    p.x_label = "octave band, Hz";
-    p.y_label = "rate change, % (+ = decays faster)";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
-    Series s{"measured/simulated", "#1f77b4", band_axis(), pct(d.bands.mean_log_rate_ratio)};
-    s.points = true;
-    for (int b = 0; b < kNumOctaveBands; ++b) {
-      s.y_error.push_back(100.0 * std::exp(d.bands.mean_log_rate_ratio[b]) * d.bands.se_log_rate_ratio[b] * 2.0);
-    }
-    Series air{"air fit", "#2ca02c", band_axis(), pct(d.bands.air_fit_log_ratio)};
-    air.dashed = true;
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
-    range_of({s.y, {0.0, 10.0, -10.0}}, &p.y_min, &p.y_max, 5.0);
-    p.series = {zero, s, air};
-    out << svg_plot(p);
-  }
-  {
-    PlotSpec p;
-    p.title = "Band level (re broadband), measured - simulated";
-    p.x_label = "octave band, Hz";
-    p.y_label = "dB";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
-    Series s{"mean +- 2 s.e.", "#1f77b4", band_axis(),
-             std::vector<double>(d.bands.mean_level_delta_db.begin(), d.bands.mean_level_delta_db.end())};
-    s.points = true;
-    for (double v : d.bands.se_level_delta_db) s.y_error.push_back(2.0 * v);
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
-    range_of({s.y, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
-    p.series = {zero, s};
-    out << svg_plot(p);
-  }
-  {
-    PlotSpec p;
-    p.title = "Spectral shape (mean over bands removed)";
-    p.x_label = "octave band, Hz";
-    p.y_label = "measured - simulated, dB";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
-    std::vector<double> ds, ts;
-    for (int b = 0; b < kNumOctaveBands; ++b) {
-      ds.push_back(d.bands.direct_shape_db[b] == 0.0 ? NAN : d.bands.direct_shape_db[b]);
-      ts.push_back(d.bands.tail_shape_db[b] == 0.0 ? NAN : d.bands.tail_shape_db[b]);
-    }
-    Series a{"direct sound", "#d62728", band_axis(), ds};
-    a.points = true;
-    Series b{"tail", "#9467bd", band_axis(), ts};
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
-    range_of({ds, ts, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
-    p.series = {zero, a, b};
-    out << svg_plot(p);
-  }
-  {
-    PlotSpec p;
-    p.title = "Onset vs time of flight";
-    p.x_label = "stated distance / c, ms";
-    p.y_label = "detected onset, ms";
-    Series m{"measured", "#1f77b4", d.flight_ms, d.onset_meas_ms};
-    m.points = true;
-    Series s{"simulated", "#ff7f0e", d.flight_ms, d.onset_sim_ms};
-    s.points = true;
-    double lo, hi;
-    range_of({d.flight_ms}, &lo, &hi, 1.0);
-    p.x_min = std::max(0.0, lo);
-    p.x_max = hi;
-    range_of({d.onset_meas_ms, d.onset_sim_ms}, &p.y_min, &p.y_max, 1.0);
-    p.y_min = std::max(0.0, p.y_min);
-    p.series = {m, s};
-    out << svg_plot(p);
-  }
+  for (size_t k = 0; k < effects.size() && k < d.findings.size(); ++k) effects[k]->report_set(d.findings[k], d, out);
   out << "</div>\n";
 
   for (const ExampleCurves& ex : d.examples) {
@@ -222,35 +126,7 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
       p.series = {{"measured", "#1f77b4", t, ex.edc_meas_db}, base, {"extended", "#2ca02c", t, ex.edc_ext_db}};
       out << svg_plot(p);
     }
-    {
-      PlotSpec p;
-      p.title = "Low-frequency magnitude (red: predicted modes)";
-      p.x_label = "Hz";
-      p.y_label = "dB (3 Hz smoothing)";
-      std::vector<double> f;
-      for (size_t i = 0; i < ex.lf_meas_db.size(); ++i) f.push_back(static_cast<double>(i));
-      p.x_min = 20;
-      p.x_max = f.empty() ? 250 : f.back();
-      p.x_markers = ex.mode_freqs_hz;
-      // Each curve normalised to its own mean level in the range (calibration gains differ).
-      auto norm = [&](const std::vector<double>& v) {
-        std::vector<double> in_range;
-        for (size_t i = 20; i < v.size(); ++i) in_range.push_back(v[i]);
-        const double m = mean_of(in_range);
-        std::vector<double> o;
-        for (double x : v) o.push_back(x - m);
-        return o;
-      };
-      Series base{"baseline", "#ff7f0e", f, norm(ex.lf_base_db)};
-      base.dashed = true;
-      p.series = {{"measured", "#1f77b4", f, norm(ex.lf_meas_db)}, base, {"extended", "#2ca02c", f, norm(ex.lf_ext_db)}};
-      std::vector<double> all;
-      for (const Series& s : p.series) {
-        for (size_t i = 20; i < s.y.size(); ++i) all.push_back(s.y[i]);
-      }
-      range_of({all}, &p.y_min, &p.y_max, 2.0);
-      out << svg_plot(p);
-    }
+    for (const auto& effect : effects) effect->report_example(ex, out);
     out << "</div>\n";
   }
   out << "</body></html>\n";

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "dsp/bands.h"
 #include "util/strings.h"
 
 namespace tsrir::diagnose {
@@ -176,6 +177,21 @@ std::string svg_heatmap(const std::string& title, const std::vector<std::vector<
   s << "<text transform='translate(11," << top + h / 2 << ") rotate(-90)' text-anchor='middle'>" << html_escape(y_label)
     << "</text></svg>";
   return s.str();
+}
+
+std::vector<double> octave_band_axis() { return std::vector<double>(kOctaveCentersHz.begin(), kOctaveCentersHz.end()); }
+
+void finite_range(const std::vector<std::vector<double>>& series, double* lo, double* hi, double pad) {
+  *lo = INFINITY;
+  *hi = -INFINITY;
+  for (const auto& s : series) {
+    for (double v : s) {
+      if (std::isfinite(v)) { *lo = std::min(*lo, v); *hi = std::max(*hi, v); }
+    }
+  }
+  if (!std::isfinite(*lo)) { *lo = -1; *hi = 1; }
+  *lo -= pad;
+  *hi += pad;
 }
 
 }  // namespace tsrir::diagnose

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include "diagnose/effect.h"
 #include "hidden_effects.h"
 #include "io/audio_io.h"
 #include "sim/room_list.h"
@@ -52,9 +53,12 @@ TEST_F(DiagnoseCli, WritesFindingsReportAndModels) {
   std::string out;
   ASSERT_EQ(run(kBin + " --num-threads=2 " + path("rooms.txt") + " " + path("rir.scp") + " " + path("out"), &out), 0) << out;
   const std::string json = read_text("out/findings.json");
-  for (const char* effect : {"room_modes", "air_absorption", "band_absorption", "transducer_response", "noise_floor",
-                             "diffuse_scattering", "time_offset"}) {
-    EXPECT_NE(json.find(std::string("\"effect\": \"") + effect + "\""), std::string::npos) << effect;
+  for (const auto& effect : diagnose::effect_registry().effects()) {
+    EXPECT_NE(json.find("\"effect\": \"" + effect->name() + "\""), std::string::npos) << effect->name();
+    // Its thresholds, by name and value.
+    for (const diagnose::Threshold& t : effect->thresholds()) {
+      EXPECT_NE(json.find("\"" + t.name + "\": "), std::string::npos) << effect->name() << "." << t.name;
+    }
   }
   EXPECT_NE(json.find("\"gain\""), std::string::npos);
   EXPECT_NE(json.find("\"fit_ids\""), std::string::npos);
@@ -67,10 +71,43 @@ TEST_F(DiagnoseCli, WritesFindingsReportAndModels) {
   EXPECT_NE(out.find("DETECTED time_offset"), std::string::npos) << out;
 }
 
+// Options from a Kaldi-style config file, the command line overriding it; the same outputs as the
+// options given on the command line.
+TEST_F(DiagnoseCli, ConfigFile) {
+  write_set(12);
+  write_text("diag.conf", "# rir-diagnose settings\n--sample-rate=16000\n--seed=5\n--num-threads=1\n");
+  std::string out_config, out_cli;
+  ASSERT_EQ(run(kBin + " --config=" + path("diag.conf") + " --num-threads=2 " + path("rooms.txt") + " " + path("rir.scp") +
+                    " " + path("out_config"),
+                &out_config),
+            0)
+      << out_config;
+  ASSERT_EQ(run(kBin + " --fs=16000 --random-seed=5 --num-threads=2 " + path("rooms.txt") + " " + path("rir.scp") + " " +
+                    path("out_cli"),
+                &out_cli),
+            0)
+      << out_cli;
+  EXPECT_EQ(read_text("out_config/extended_models"), read_text("out_cli/extended_models"));
+  // --seed reached the diagnosis: another seed gives other simulations (and fitted values).
+  std::string out_seed1;
+  ASSERT_EQ(run(kBin + " --seed=1 " + path("rooms.txt") + " " + path("rir.scp") + " " + path("out_seed1"), &out_seed1), 0);
+  EXPECT_NE(read_text("out_seed1/findings.json"), read_text("out_cli/findings.json"));
+  write_text("bad.conf", "--sample-rate=16000\n--no-such-option=1\n");
+  EXPECT_NE(run(kBin + " --config=" + path("bad.conf") + " a b c", &out_cli), 0);
+  EXPECT_NE(out_cli.find("bad.conf:2"), std::string::npos) << out_cli;
+}
+
 TEST_F(DiagnoseCli, HelpAndBadInput) {
   std::string out;
   EXPECT_EQ(run(kBin + " --help", &out), 0);
   EXPECT_NE(out.find("Example"), std::string::npos);
+  // The catalog with every threshold and why it has its value.
+  for (const auto& effect : diagnose::effect_registry().effects()) {
+    EXPECT_NE(out.find("  " + effect->name() + "\n"), std::string::npos) << effect->name();
+    for (const diagnose::Threshold& t : effect->thresholds()) {
+      EXPECT_NE(out.find("- " + t.name + " = "), std::string::npos) << effect->name() << "." << t.name;
+    }
+  }
   EXPECT_NE(run(kBin + " --no-such-option a b c", &out), 0);
 
   write_set(8);

@@ -1,0 +1,276 @@
+#include "diagnose/decay_rate_effects.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "diagnose/decision_rules.h"
+#include "diagnose/extension_fit.h"
+#include "sim/air_absorption.h"
+#include "sim/room_refits.h"
+#include "util/log.h"
+#include "util/parallel.h"
+
+namespace tsrir::diagnose {
+
+std::vector<Threshold> AirAbsorptionThresholds::list() const {
+  return {
+      {"min_top_rate_ratio", min_top_rate_ratio,
+       "the fitted ISO 9613-1 curve must predict this much faster decay in the top tested band (5 %: below that, "
+       "air is within the decay rates' per-room uncertainty)"},
+      {"max_chi2_fraction", max_chi2_fraction,
+       "the curve may leave at most this share of the no-change chi-square (air must explain the whole mismatch)"},
+      {"min_chi2_improvement", min_chi2_improvement,
+       "and improve the chi-square by more than this over no change AND over one uniform rate factor for all bands "
+       "(a room volume or area error; dry air's nearly flat curve would otherwise take it)"},
+  };
+}
+
+std::vector<Threshold> BandAbsorptionThresholds::list() const {
+  return {{"min_rate_ratio", min_rate_ratio,
+           "some room's band decay rate departs by this factor (8 %: about the just-noticeable difference of "
+           "reverberation time) at p < alpha / (rooms x bands)"}};
+}
+
+double air_log_ratio(int band, const AirFit& fit, double base_rate, double temperature_c, double c) {
+  if (fit.scale <= 0.0) return 0.0;
+  const double inc = sim::air_band_decay_increase_per_s(kOctaveCentersHz[band], temperature_c, fit.humidity_percent, c,
+                                                        base_rate);
+  return std::log((base_rate + fit.scale * inc) / base_rate);
+}
+
+AirFit fit_air(const std::vector<RateObservation>& obs, double temperature_c, double c) {
+  AirFit best;
+  for (const RateObservation& o : obs) best.chi2_zero += std::pow(o.mean_log_ratio / o.standard_error, 2);
+  best.chi2_fit = best.chi2_zero;
+  const double humidities[] = {3, 5, 7.5, 10, 12.5, 15, 20, 25, 30, 40, 50, 60, 70, 85, 100};
+  for (double h : humidities) {
+    std::vector<double> inc;
+    for (const RateObservation& o : obs) {
+      inc.push_back(sim::air_band_decay_increase_per_s(kOctaveCentersHz[o.band], temperature_c, h, c, o.base_rate_per_s));
+    }
+    for (double scale = 0.05; scale <= 4.0001; scale += 0.05) {
+      double chi2 = 0.0;
+      for (size_t k = 0; k < obs.size(); ++k) {
+        const RateObservation& o = obs[k];
+        chi2 += std::pow((o.mean_log_ratio - std::log1p(scale * inc[k] / o.base_rate_per_s)) / o.standard_error, 2);
+      }
+      // Ties (the humidity/scale trade-off) go to the scale nearest 1.
+      if (chi2 < best.chi2_fit - 1e-9 ||
+          (std::abs(chi2 - best.chi2_fit) <= 1e-9 && std::abs(std::log(scale)) < std::abs(std::log(best.scale)))) {
+        best.chi2_fit = chi2;
+        best.humidity_percent = h;
+        best.scale = scale;
+      }
+    }
+  }
+  return best;
+}
+
+DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_modes_detected) {
+  const size_t n = obs.meas.size();
+  DecayRateAnalysis a;
+  a.q.assign(kNumOctaveBands, {});
+  std::vector<std::vector<double>> qn(kNumOctaveBands);
+  BandValues base{};
+  std::vector<int> bands;
+  a.schroeder_hz = median_of(obs.schroeder_hz);
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    size_t ok = 0;
+    std::vector<double> rates;
+    for (size_t i = 0; i < n; ++i) {
+      const double rm = obs.meas[i].decay_rate_per_s[b], ra = obs.sim_a[i].decay_rate_per_s[b],
+                   rb = obs.sim_b[i].decay_rate_per_s[b];
+      a.q[b].push_back(std::log(rm / ra));
+      qn[b].push_back(std::log(rb / ra));
+      if (std::isfinite(rm) && std::isfinite(ra) && std::isfinite(rb)) ++ok;
+      rates.push_back(ra);
+    }
+    base[b] = median_of(rates);
+    if (n > 0 && ok >= 0.8 * n && ok >= 3) bands.push_back(b);
+  }
+  a.low_bands_left_to_modes = room_modes_detected;
+  for (int b : bands) {
+    if (!(a.low_bands_left_to_modes && kOctaveCentersHz[b] < 2.0 * a.schroeder_hz)) a.tested.push_back(b);
+  }
+  // Rooms (absorption is a property of each room, air of the whole campaign).
+  std::map<std::string, std::vector<size_t>> groups;
+  for (size_t i = 0; i < n; ++i) groups[room_group(obs.rooms[i])].push_back(i);
+  a.num_rooms = groups.size();
+  std::map<std::string, BandValues> group_base;
+  for (const auto& [g, idx] : groups) {
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      std::vector<double> r;
+      for (size_t i : idx) r.push_back(obs.sim_a[i].decay_rate_per_s[b]);
+      group_base[g][b] = median_of(r);
+    }
+  }
+  a.t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, a.tested.size() * groups.size()),
+                        std::max<double>(2.0, n / std::max<double>(1.0, groups.size()) - 1.0));
+  const double min_ratio = std::log(kBandThresholds.min_rate_ratio);
+  const double temp = obs.rooms.empty() ? 20.0 : obs.rooms[0].temperature_c;
+  const double c = obs.rooms.empty() ? 343.0 : obs.rooms[0].speed_of_sound_m_s;
+  const std::vector<int>& tested = a.tested;
+  const double t_crit = a.t_crit;
+
+  auto analyse = [&](const std::vector<std::vector<double>>& x, DecayRateSide* side) {
+    std::vector<RateObservation> observations;
+    for (const auto& [g, idx] : groups) {
+      if (idx.size() < 3) continue;
+      for (int b : tested) {
+        std::vector<double> v;
+        for (size_t i : idx) v.push_back(x[b][i]);
+        const OneSampleTest t = t_test(v);
+        if (t.n < 3) continue;
+        observations.push_back({b, t.mean, std::max(t.standard_error, 1e-4), group_base[g][b]});
+      }
+    }
+    side->fit = fit_air(observations, temp, c);
+    // The simpler rival: one decay-rate factor for every band (a room volume or area that
+    // differs from the stated one, or absorption off by the same factor everywhere). Air must
+    // explain the bands better than that: dry air's ISO curve is nearly flat across the bands
+    // and would otherwise take a uniform change for air.
+    double sw = 0.0, swx = 0.0;
+    for (const RateObservation& o : observations) {
+      const double w = 1.0 / (o.standard_error * o.standard_error);
+      sw += w;
+      swx += w * o.mean_log_ratio;
+    }
+    double chi2_uniform = 0.0;
+    for (const RateObservation& o : observations) {
+      chi2_uniform += std::pow((o.mean_log_ratio - (sw > 0.0 ? swx / sw : 0.0)) / o.standard_error, 2);
+    }
+    side->uniform_chi2 = chi2_uniform;
+    side->air_curve.fill(NAN);
+    for (int b : tested) side->air_curve[b] = air_log_ratio(b, side->fit, base[b], temp, c);
+    bool residual_significant = false, raw_significant = false, raw_significant_air = false;
+    side->worst_band = -1;
+    side->worst_ratio = 0.0;
+    for (const auto& [g, idx] : groups) {
+      if (idx.size() < 3) continue;
+      for (int b : tested) {
+        const double curve = air_log_ratio(b, side->fit, group_base[g][b], temp, c);
+        std::vector<double> r, raw;
+        for (size_t i : idx) { r.push_back(x[b][i] - curve); raw.push_back(x[b][i]); }
+        const OneSampleTest tr = t_test(r), t0 = t_test(raw);
+        if (std::abs(tr.mean) > min_ratio && std::abs(tr.t) > t_crit) residual_significant = true;
+        if (std::abs(t0.mean) > min_ratio && std::abs(t0.t) > t_crit) raw_significant = true;
+        if (std::abs(t0.mean) > std::log(kAirThresholds.min_top_rate_ratio) && std::abs(t0.t) > t_crit) raw_significant_air = true;
+        if (std::abs(t0.mean) > std::abs(side->worst_ratio)) { side->worst_ratio = t0.mean; side->worst_band = b; side->worst_room = g; }
+      }
+    }
+    const double top = tested.empty() ? 0.0 : side->air_curve[tested.back()];
+    const double min_gain = kAirThresholds.min_chi2_improvement;
+    const AirFit& fit = side->fit;
+    side->air_fires = raw_significant_air && fit.scale > 0.0 && fit.chi2_fit < kAirThresholds.max_chi2_fraction * fit.chi2_zero &&
+                      fit.chi2_zero - fit.chi2_fit > min_gain && side->uniform_chi2 - fit.chi2_fit > min_gain &&
+                      !residual_significant && top > std::log(kAirThresholds.min_top_rate_ratio);
+    // With air explaining everything, the per-band refit is not needed; otherwise any band
+    // that departs (raw, i.e. the refit also absorbs air) is band_absorption.
+    side->band_fires = side->air_fires ? residual_significant : raw_significant;
+  };
+  analyse(a.q, &a.measured);
+  analyse(qn, &a.null);
+  return a;
+}
+
+sim::BandValues band_absorption_scales(const SetObservations& obs, const std::vector<size_t>& idx, const AirFit& air_fit,
+                                       double keep_below_hz) {
+  const double temp = obs.rooms[0].temperature_c, c = obs.rooms[0].speed_of_sound_m_s;
+  sim::BandValues scale;
+  scale.fill(NAN);
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    if (kOctaveCentersHz[b] < keep_below_hz) { scale[b] = 1.0; continue; }
+    std::vector<double> q, r;
+    for (size_t i : idx) {
+      q.push_back(std::log(obs.meas[i].decay_rate_per_s[b] / obs.sim_a[i].decay_rate_per_s[b]));
+      r.push_back(obs.sim_a[i].decay_rate_per_s[b]);
+    }
+    if (finite_values(q).size() >= std::max<size_t>(1, idx.size() / 2)) {
+      const double air_share = air_fit.scale > 0.0 ? air_log_ratio(b, air_fit, median_of(r), temp, c) : 0.0;
+      scale[b] = std::clamp(std::exp(median_of(q) - air_share), 0.1, 10.0);
+    }
+  }
+  // Bands without a measurement (e.g. above Nyquist) take their nearest measured neighbour.
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    if (std::isfinite(scale[b])) continue;
+    for (int d = 1; d < kNumOctaveBands && !std::isfinite(scale[b]); ++d) {
+      if (b - d >= 0 && std::isfinite(scale[b - d])) scale[b] = scale[b - d];
+      else if (b + d < kNumOctaveBands && std::isfinite(scale[b + d])) scale[b] = scale[b + d];
+    }
+    if (!std::isfinite(scale[b])) scale[b] = 1.0;
+  }
+  return scale;
+}
+
+std::string band_absorption_spec(const sim::BandValues& scale) {
+  std::string spec = "band_absorption:";
+  for (int b = 0; b < kNumOctaveBands; ++b) spec += (b ? "," : "") + sim::band_absorption_key(b) + "=" + spec_num(scale[b]);
+  return spec;
+}
+
+sim::BandValues refine_band_scales(const SetObservations& obs, const std::vector<size_t>& idx, sim::BandValues scale,
+                                   const std::string& model_prefix, const DiagnoseOptions& options, int iterations,
+                                   double keep_below_hz) {
+  std::array<bool, kNumOctaveBands> measured{};
+  for (int it = 0; it < iterations; ++it) {
+    const std::string spec = model_prefix + "+" + band_absorption_spec(scale);
+    std::vector<sim::BandValues> rates(idx.size()), early(idx.size());
+    parallel_for(idx.size(), options.num_threads, [&](size_t k) {
+      const size_t i = idx[k];
+      const Signal s = render_rir(spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed);
+      const RirFeatures f = compute_features(s, {}, obs.schroeder_hz[i], obs.t60_low_s[i]);
+      rates[k] = f.decay_rate_per_s;
+      early[k] = f.early_decay_rate_per_s;
+    });
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      if (kOctaveCentersHz[b] < keep_below_hz) continue;
+      // Late (T30) and early (EDT) decay residuals, averaged: the early one keeps moving a band
+      // whose T30 is dominated by a neighbour's leakage.
+      std::vector<double> q, qe;
+      for (size_t k = 0; k < idx.size(); ++k) {
+        q.push_back(std::log(obs.meas[idx[k]].decay_rate_per_s[b] / rates[k][b]));
+        qe.push_back(std::log(obs.meas[idx[k]].early_decay_rate_per_s[b] / early[k][b]));
+      }
+      if (finite_values(q).size() >= std::max<size_t>(1, idx.size() / 2)) {
+        const double late = median_of(q), first = median_of(qe);
+        const double step = std::isfinite(first) ? 0.5 * (late + first) : late;
+        scale[b] = std::clamp(scale[b] * std::exp(step), 0.1, 10.0);
+        measured[b] = true;
+      }
+    }
+  }
+  // Bands without a measurement (above Nyquist) follow their nearest refined neighbour.
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    if (measured[b] || kOctaveCentersHz[b] < keep_below_hz) continue;
+    for (int d = 1; d < kNumOctaveBands; ++d) {
+      if (b - d >= 0 && measured[b - d]) { scale[b] = scale[b - d]; break; }
+      if (b + d < kNumOctaveBands && measured[b + d]) { scale[b] = scale[b + d]; break; }
+    }
+  }
+  return scale;
+}
+
+SetObservations render_band_refitted(const SetObservations& obs, const DiagnoseOptions& options) {
+  std::map<std::string, std::vector<size_t>> by_room;
+  for (size_t i = 0; i < obs.rooms.size(); ++i) by_room[room_group(obs.rooms[i])].push_back(i);
+  std::map<std::string, std::string> spec;
+  for (const auto& [room, idx] : by_room) {
+    const sim::BandValues scale = refine_band_scales(obs, idx, band_absorption_scales(obs, idx, AirFit{}, 0.0),
+                                                     options.baseline_model, options, 3, 0.0);
+    spec[room] = options.baseline_model + "+" + band_absorption_spec(scale);
+    log_info("band refit of " + room + ": " + spec[room]);
+  }
+  SetObservations refit = obs;
+  parallel_for(obs.rooms.size(), options.num_threads, [&](size_t i) {
+    const std::string& s = spec.at(room_group(obs.rooms[i]));
+    const Signal a = render_rir(s, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed);
+    const Signal b = render_rir(s, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed + 1);
+    refit.sim_a[i] = compute_features(a, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
+    refit.sim_b[i] = compute_features(b, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
+  });
+  return refit;
+}
+
+}  // namespace tsrir::diagnose

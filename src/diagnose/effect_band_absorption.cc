@@ -1,0 +1,122 @@
+// band_absorption: some band of some room decays faster or slower than its stated absorption gives
+// (the absorption prior is wrong per band: panels, furniture, people).
+//   Statistic  per-room, per-band mean log decay-rate ratio ln(rate_measured / rate_simulated),
+//              t-tested per band and room (Bonferroni over rooms x bands). When air_absorption is
+//              detected, the residual after the air curve is tested; otherwise the raw ratio, and
+//              the refit then also absorbs air's share (decay_rate_effects.h).
+//   Depends    room_modes: bands below twice the Schroeder frequency are left to it when it is
+//              detected; air_absorption: its curve is removed first when detected (decision and
+//              fit).
+//   Extension  sim "band_absorption" (src/sim/room_refits.h), per room: factors on the absorption
+//              exponent -ln(1 - a) (Eyring: the decay rate is proportional to it) from the median
+//              measured / simulated decay rate, air's share removed, then refined by analysis by
+//              synthesis (decay_rate_effects.h: refine_band_scales).
+#include <cmath>
+
+#include "diagnose/decay_rate_effects.h"
+#include "diagnose/decision_rules.h"
+#include "diagnose/diagnose.h"
+#include "diagnose/extension_fit.h"
+#include "diagnose/svg_plot.h"
+#include "sim/room_refits.h"
+
+namespace tsrir::diagnose {
+namespace {
+
+class BandAbsorptionEffect : public Effect {
+ public:
+  std::string name() const override { return "band_absorption"; }
+  std::string description() const override {
+    return "a band of a room decays faster or slower than its stated absorption gives: per-band, per-room decay-rate "
+           "ratios (after the air curve when air_absorption is detected); extension: band_absorption per room "
+           "(factors on -ln(1 - a)).";
+  }
+  std::vector<Threshold> thresholds() const override { return kBandThresholds.list(); }
+  std::string gain_metric() const override { return "t30_per_band"; }
+  std::vector<std::string> depends_on() const override { return {"room_modes", "air_absorption"}; }
+
+  Finding detect(const DecisionContext& ctx) const override {
+    const SetObservations& obs = ctx.obs();
+    const size_t n = obs.meas.size();
+    const DecayRateAnalysis a = analyse_decay_rates(obs, ctx.detected("room_modes"));
+    const double min_ratio = std::log(kBandThresholds.min_rate_ratio);
+    const double wr = a.measured.worst_ratio, wrn = a.null.worst_ratio;
+    Finding band;
+    band.effect = name();
+    band.detected = a.measured.band_fires && !a.null.band_fires;
+    band.statistic = wr;
+    band.null_statistic = wrn;
+    band.threshold = min_ratio;
+    band.statistic_unit = "ln(rate ratio)";
+    band.confidence = confidence_of(std::isfinite(wr) ? student_t_two_sided_p(a.t_crit, n - 1.0) : 1.0, wr, min_ratio,
+                                    band.detected);
+    band.evidence = "largest per-band decay-rate departure " + num(100.0 * std::expm1(wr), 2) + "%" +
+                    (a.measured.worst_band >= 0 ? " at " + band_name(a.measured.worst_band) : std::string()) +
+                    (a.num_rooms > 1 ? " in room " + a.measured.worst_room : std::string()) + " (threshold " +
+                    num(100.0 * (kBandThresholds.min_rate_ratio - 1.0)) + "% at |t| > " + num(a.t_crit) +
+                    (ctx.detected("air_absorption") ? ", after the air-absorption fit" : "") + ")" +
+                    (a.low_bands_left_to_modes ? "; bands below " + num(2.0 * a.schroeder_hz) + " Hz are left to room_modes"
+                                               : "") +
+                    "; seed-vs-seed largest " + num(100.0 * std::expm1(wrn), 2) + "%.";
+    // The report's band-level plot: level re broadband, measured - simulated, every band.
+    std::vector<double>& mean = band.curves["mean_level_delta_db"];
+    std::vector<double>& se = band.curves["se_level_delta_db"];
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      const OneSampleTest l = t_test(paired(obs.meas, obs.sim_a, [b](const RirFeatures& f) { return f.level_db[b]; }));
+      mean.push_back(l.n ? l.mean : NAN);
+      se.push_back(l.n ? l.standard_error : NAN);
+    }
+    return band;
+  }
+
+  Extension fit(const FitContext& ctx, Finding* finding) const override {
+    const SetObservations& obs = ctx.obs();
+    AirFit air_fit;
+    if (ctx.detected("air_absorption")) {
+      for (const auto& [k, v] : ctx.finding("air_absorption").parameters) {
+        if (k == "humidity_percent") air_fit.humidity_percent = v;
+        if (k == "scale") air_fit.scale = v;
+      }
+    }
+    const std::string air_spec = air_fit.scale > 0.0 ? "+air:humidity=" + spec_num(air_fit.humidity_percent) +
+                                                           ",scale=" + spec_num(air_fit.scale)
+                                                     : std::string();
+    const double keep_below = ctx.detected("room_modes") ? 2.0 * median_of(obs.schroeder_hz) : 0.0;
+    Extension ext;
+    finding->parameters.clear();
+    for (const auto& [room, idx] : ctx.fit_by_room()) {
+      const sim::BandValues scale =
+          refine_band_scales(obs, idx, band_absorption_scales(obs, idx, air_fit, keep_below),
+                             ctx.options().baseline_model + air_spec, ctx.options(), 3, keep_below);
+      for (int b = 0; b < kNumOctaveBands; ++b) {
+        finding->parameters.push_back(
+            {(ctx.fit_by_room().size() > 1 ? room + "." : std::string()) + sim::band_absorption_key(b), scale[b]});
+      }
+      ext.by_room[room] = "+" + band_absorption_spec(scale);
+    }
+    return ext;
+  }
+
+  void report_set(const Finding& f, const Diagnosis&, std::ostream& html) const override {
+    PlotSpec p;
+    p.title = "Band level (re broadband), measured - simulated";
+    p.x_label = "octave band, Hz";
+    p.y_label = "dB";
+    p.log_x = true;
+    p.x_min = 44;
+    p.x_max = 11300;
+    Series s{"mean +- 2 s.e.", "#1f77b4", octave_band_axis(), f.curves.at("mean_level_delta_db")};
+    s.points = true;
+    for (double v : f.curves.at("se_level_delta_db")) s.y_error.push_back(2.0 * v);
+    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    finite_range({s.y, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
+    p.series = {zero, s};
+    html << svg_plot(p);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> make_band_absorption_effect() { return std::make_unique<BandAbsorptionEffect>(); }
+
+}  // namespace tsrir::diagnose

@@ -1,0 +1,193 @@
+// transducer_response: the loudspeaker/microphone chain colours the response; the same colouration
+// is then in the direct sound and in the reverberant tail.
+//   Statistic  direct-sound spectral shape (band levels of the direct-sound window, measured minus
+//              simulated, mean over bands removed) over the bands the short direct window resolves:
+//              some band beyond min_db at p < alpha / bands, AND the tail's shape agrees
+//              (correlation of the mean shapes above min_correlation), which separates a chain's
+//              colouration from anything that shapes the direct sound alone.
+//   Extension  sim "transducer" (src/sim/transducer.h): per-band gains = median direct-sound band
+//              level difference (absolute, so the calibration gain of the measurement chain is
+//              part of the filter); bands below 500 Hz take the tail's level difference aligned to
+//              the direct-sound estimate.
+#include <algorithm>
+#include <cmath>
+
+#include "diagnose/decision_rules.h"
+#include "diagnose/diagnose.h"
+#include "diagnose/extension_fit.h"
+#include "diagnose/svg_plot.h"
+#include "sim/transducer.h"
+
+namespace tsrir::diagnose {
+namespace {
+
+struct TransducerThresholds {
+  double min_db = 1.0;
+  double min_correlation = 0.6;
+  std::vector<Threshold> list() const {
+    return {{"min_db", min_db,
+             "some band of the direct sound's spectral shape departs by this much (about the just-noticeable "
+             "level difference of a band) at p < alpha / bands"},
+            {"min_correlation", min_correlation,
+             "and the tail's mean shape correlates with the direct sound's above this (the chain colours both)"}};
+  }
+};
+constexpr TransducerThresholds kThresholds{};
+
+class TransducerResponseEffect : public Effect {
+ public:
+  std::string name() const override { return "transducer_response"; }
+  std::string description() const override {
+    return "the measurement chain colours the response: the direct sound's spectral shape departs from the "
+           "simulation's and the tail's shape agrees; extension: transducer (per-band gains, dB).";
+  }
+  std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
+  std::string gain_metric() const override { return "level_per_band"; }
+
+  Finding detect(const DecisionContext& ctx) const override {
+    const SetObservations& obs = ctx.obs();
+    const size_t n = obs.meas.size();
+    const double fs = obs.measured.empty() ? 16000.0 : obs.measured[0].sample_rate_hz;
+    Finding transducer;
+    transducer.effect = name();
+    std::vector<int> bands;
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      if (direct_band_reliable(b, fs)) bands.push_back(b);
+    }
+    auto shapes = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, bool direct) {
+      std::vector<std::vector<double>> s(kNumOctaveBands, std::vector<double>(n, NAN));
+      for (size_t i = 0; i < n; ++i) {
+        double m = 0.0;
+        int c = 0;
+        BandValues dlt{};
+        for (int b : bands) {
+          dlt[b] = direct ? x[i].direct_band_db[b] - y[i].direct_band_db[b] : x[i].tail_band_db[b] - y[i].tail_band_db[b];
+          if (std::isfinite(dlt[b])) { m += dlt[b]; ++c; }
+        }
+        if (c == 0) continue;
+        for (int b : bands) s[b][i] = dlt[b] - m / c;
+      }
+      return s;
+    };
+    const double t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, bands.size()), std::max<double>(2.0, n - 1.0));
+    auto rule = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, double* max_abs, double* corr,
+                    double* p_min, int* worst, BandValues* dshape, BandValues* tshape) {
+      const auto ds = shapes(x, y, true), ts = shapes(x, y, false);
+      std::vector<double> dm, tm;
+      bool any = false;
+      *max_abs = 0.0;
+      *p_min = 1.0;
+      *worst = -1;
+      for (int b : bands) {
+        const OneSampleTest t = t_test(ds[b]);
+        (*dshape)[b] = t.mean;
+        (*tshape)[b] = mean_of(ts[b]);
+        dm.push_back(t.mean);
+        tm.push_back((*tshape)[b]);
+        if (std::abs(t.mean) > *max_abs) { *max_abs = std::abs(t.mean); *worst = b; }
+        if (std::abs(t.mean) > kThresholds.min_db && std::abs(t.t) > t_crit) any = true;
+        *p_min = std::min(*p_min, t.p_two_sided * bands.size());
+      }
+      *corr = correlation(dm, tm);
+      return any && *corr > kThresholds.min_correlation;
+    };
+    double mx, corr, pmin, mxn, corrn, pminn;
+    int worst, worstn;
+    BandValues ds{}, ts{}, dsn{}, tsn{};
+    const bool fires = rule(obs.meas, obs.sim_a, &mx, &corr, &pmin, &worst, &ds, &ts);
+    const bool null_fires = rule(obs.sim_b, obs.sim_a, &mxn, &corrn, &pminn, &worstn, &dsn, &tsn);
+    transducer.detected = fires && !null_fires;
+    transducer.statistic = mx;
+    transducer.null_statistic = mxn;
+    transducer.threshold = kThresholds.min_db;
+    transducer.statistic_unit = "dB";
+    transducer.confidence = confidence_of(std::min(1.0, pmin), mx, kThresholds.min_db, transducer.detected);
+    transducer.evidence = "direct-sound spectral shape departs by up to " + num(mx) + " dB" +
+                          (worst >= 0 ? " (at " + band_name(worst) + ")" : std::string()) +
+                          " from the simulation (threshold " + num(kThresholds.min_db) + " dB at |t| > " + num(t_crit) +
+                          "), and the tail's shape correlates with it at r = " + num(corr) + " (needs > " +
+                          num(kThresholds.min_correlation) + "); seed-vs-seed " + num(mxn) + " dB, r = " + num(corrn) + ".";
+    // The report's shape plot (bands the direct window does not resolve stay 0: not plotted).
+    transducer.curves["direct_shape_db"].assign(ds.begin(), ds.end());
+    transducer.curves["tail_shape_db"].assign(ts.begin(), ts.end());
+    return transducer;
+  }
+
+  Extension fit(const FitContext& ctx, Finding* finding) const override {
+    const SetObservations& obs = ctx.obs();
+    const double fs = ctx.options().sample_rate_hz;
+    sim::BandValues gain;
+    gain.fill(NAN);
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      if (!direct_band_reliable(b, fs)) continue;
+      std::vector<double> d;
+      for (size_t i : ctx.fit_index()) d.push_back(obs.meas[i].direct_band_db[b] - obs.sim_a[i].direct_band_db[b]);
+      gain[b] = median_of(d);
+    }
+    // Bands the short direct window cannot resolve (below 500 Hz) take the tail's level
+    // difference, aligned to the direct-sound estimate over the bands both resolve (the tail
+    // carries the same colouration plus the overall reverberant level).
+    sim::BandValues tail_delta;
+    tail_delta.fill(NAN);
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      std::vector<double> d;
+      for (size_t i : ctx.fit_index()) d.push_back(obs.meas[i].tail_band_db[b] - obs.sim_a[i].tail_band_db[b]);
+      tail_delta[b] = median_of(d);
+    }
+    std::vector<double> offset;
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      if (std::isfinite(gain[b]) && std::isfinite(tail_delta[b])) offset.push_back(tail_delta[b] - gain[b]);
+    }
+    const double tail_offset = offset.empty() ? 0.0 : mean_of(offset);
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      if (!std::isfinite(gain[b]) && std::isfinite(tail_delta[b]) && kOctaveCentersHz[b] < 500.0) {
+        gain[b] = tail_delta[b] - tail_offset;
+      }
+    }
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      if (std::isfinite(gain[b])) continue;
+      for (int d = 1; d < kNumOctaveBands && !std::isfinite(gain[b]); ++d) {
+        if (b - d >= 0 && std::isfinite(gain[b - d])) gain[b] = gain[b - d];
+        else if (b + d < kNumOctaveBands && std::isfinite(gain[b + d])) gain[b] = gain[b + d];
+      }
+      if (!std::isfinite(gain[b])) gain[b] = 0.0;
+    }
+    std::string spec = "+transducer:";
+    finding->parameters.clear();
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      const double g = std::clamp(gain[b], -60.0, 60.0);
+      spec += (b ? "," : "") + sim::transducer_gain_key(b) + "=" + spec_num(g);
+      finding->parameters.push_back({sim::transducer_gain_key(b) + "_db", g});
+    }
+    return {spec, {}};
+  }
+
+  void report_set(const Finding& f, const Diagnosis&, std::ostream& html) const override {
+    PlotSpec p;
+    p.title = "Spectral shape (mean over bands removed)";
+    p.x_label = "octave band, Hz";
+    p.y_label = "measured - simulated, dB";
+    p.log_x = true;
+    p.x_min = 44;
+    p.x_max = 11300;
+    std::vector<double> ds, ts;
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      const double d = f.curves.at("direct_shape_db")[b], t = f.curves.at("tail_shape_db")[b];
+      ds.push_back(d == 0.0 ? NAN : d);
+      ts.push_back(t == 0.0 ? NAN : t);
+    }
+    Series a{"direct sound", "#d62728", octave_band_axis(), ds};
+    a.points = true;
+    Series b{"tail", "#9467bd", octave_band_axis(), ts};
+    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    finite_range({ds, ts, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
+    p.series = {zero, a, b};
+    html << svg_plot(p);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Effect> make_transducer_response_effect() { return std::make_unique<TransducerResponseEffect>(); }
+
+}  // namespace tsrir::diagnose
