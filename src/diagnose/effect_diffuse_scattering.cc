@@ -3,6 +3,10 @@
 //   Statistic  early (5-45 ms) normalised echo density of the 1-4 kHz band, each RIR convolved
 //              with the other's direct sound so that a chain's colouration or ringing cancels
 //              (rir_features.h: cross_equalised_echo_density); paired mean, both directions.
+//   Depends    source_directivity: a directional source weights the early reflections unequally
+//              (those leaving near its axis strong, the others weak), which makes the early response
+//              sparser, i.e. reads as less scattering. When it is detected, only a denser early
+//              response than simulated (more scattering) is evidence: the decision is one-sided.
 //   Extension  sim "scattering" (src/sim/room_refits.h): the scattering value whose simulated early
 //              echo density matches the measured one, from a grid of trial renders (two seeds per
 //              value) made monotone by pool-adjacent-violators.
@@ -58,14 +62,21 @@ class DiffuseScatteringEffect : public Effect {
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
   std::string gain_metric() const override { return "echo_density"; }
+  std::vector<std::string> depends_on() const override { return {"source_directivity"}; }
 
   Finding detect(const DecisionContext& ctx) const override {
     const SetObservations& obs = ctx.obs();
     std::vector<double> ed_d, ed_e;
     for (const auto& [x, y] : obs.echo_density_meas_a) ed_d.push_back(x - y);
     for (const auto& [x, y] : obs.echo_density_b_a) ed_e.push_back(x - y);
-    return decide_mean(name(), ed_d, ed_e, kThresholds.min_echo_density, 0,
-                       "early (5-45 ms) normalised echo density, 1-4 kHz, cross-equalised", "");
+    const bool directional = ctx.detected("source_directivity");
+    Finding f = decide_mean(name(), ed_d, ed_e, kThresholds.min_echo_density, directional ? +1 : 0,
+                            "early (5-45 ms) normalised echo density, 1-4 kHz, cross-equalised", "");
+    if (directional) {
+      f.evidence += " Only a denser response counts: the detected source directivity makes the early response "
+                    "sparser.";
+    }
+    return f;
   }
 
   Extension fit(const FitContext& ctx, Finding* finding) const override {

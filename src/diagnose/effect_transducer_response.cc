@@ -9,6 +9,14 @@
 //              level difference (absolute, so the calibration gain of the measurement chain is
 //              part of the filter); bands below 500 Hz take the tail's level difference aligned to
 //              the direct-sound estimate.
+//   Depends    source_directivity: a directional source raises the direct sound alone, by its
+//              directivity index per band, which shapes the direct sound without being the chain's
+//              colouration. When it is detected, the direct-sound differences are taken net of its
+//              per-band estimate, in the decision and in the fitted gains (the chain's colouration is
+//              what the direct sound and the tail share), and the decision uses the simulations
+//              the directivity was decided against (band-refitted when air_absorption or
+//              band_absorption is detected: its estimate is the direct sound's rise re those
+//              simulations' tail).
 #include <algorithm>
 #include <cmath>
 
@@ -43,9 +51,14 @@ class TransducerResponseEffect : public Effect {
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
   std::string gain_metric() const override { return "level_per_band"; }
+  std::vector<std::string> depends_on() const override {
+    return {"air_absorption", "band_absorption", "source_directivity"};
+  }
 
   Finding detect(const DecisionContext& ctx) const override {
-    const SetObservations& obs = ctx.obs();
+    const bool directional = ctx.detected("source_directivity");
+    const bool refitted = directional && (ctx.detected("air_absorption") || ctx.detected("band_absorption"));
+    const SetObservations& obs = refitted ? ctx.band_refitted() : ctx.obs();
     const size_t n = obs.meas.size();
     const double fs = obs.measured.empty() ? 16000.0 : obs.measured[0].sample_rate_hz;
     Finding transducer;
@@ -54,14 +67,22 @@ class TransducerResponseEffect : public Effect {
     for (int b = 0; b < kNumOctaveBands; ++b) {
       if (direct_band_reliable(b, fs)) bands.push_back(b);
     }
-    auto shapes = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, bool direct) {
+    // The direct sound's share of a detected source directivity (measured side only; the seeds of
+    // the null are both omni).
+    BandValues directivity_db{};
+    if (directional) {
+      const std::vector<double>& di = ctx.finding("source_directivity").curves.at("di_db");
+      for (int b : bands) directivity_db[b] = di[b];
+    }
+    auto shapes = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, bool direct, const BandValues& net) {
       std::vector<std::vector<double>> s(kNumOctaveBands, std::vector<double>(n, NAN));
       for (size_t i = 0; i < n; ++i) {
         double m = 0.0;
         int c = 0;
         BandValues dlt{};
         for (int b : bands) {
-          dlt[b] = direct ? x[i].direct_band_db[b] - y[i].direct_band_db[b] : x[i].tail_band_db[b] - y[i].tail_band_db[b];
+          dlt[b] = direct ? x[i].direct_band_db[b] - y[i].direct_band_db[b] - net[b]
+                          : x[i].tail_band_db[b] - y[i].tail_band_db[b];
           if (std::isfinite(dlt[b])) { m += dlt[b]; ++c; }
         }
         if (c == 0) continue;
@@ -70,9 +91,9 @@ class TransducerResponseEffect : public Effect {
       return s;
     };
     const double t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, bands.size()), std::max<double>(2.0, n - 1.0));
-    auto rule = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, double* max_abs, double* corr,
-                    double* p_min, int* worst, BandValues* dshape, BandValues* tshape) {
-      const auto ds = shapes(x, y, true), ts = shapes(x, y, false);
+    auto rule = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, const BandValues& net,
+                    double* max_abs, double* corr, double* p_min, int* worst, BandValues* dshape, BandValues* tshape) {
+      const auto ds = shapes(x, y, true, net), ts = shapes(x, y, false, net);
       std::vector<double> dm, tm;
       bool any = false;
       *max_abs = 0.0;
@@ -94,8 +115,8 @@ class TransducerResponseEffect : public Effect {
     double mx, corr, pmin, mxn, corrn, pminn;
     int worst, worstn;
     BandValues ds{}, ts{}, dsn{}, tsn{};
-    const bool fires = rule(obs.meas, obs.sim_a, &mx, &corr, &pmin, &worst, &ds, &ts);
-    const bool null_fires = rule(obs.sim_b, obs.sim_a, &mxn, &corrn, &pminn, &worstn, &dsn, &tsn);
+    const bool fires = rule(obs.meas, obs.sim_a, directivity_db, &mx, &corr, &pmin, &worst, &ds, &ts);
+    const bool null_fires = rule(obs.sim_b, obs.sim_a, BandValues{}, &mxn, &corrn, &pminn, &worstn, &dsn, &tsn);
     transducer.detected = fires && !null_fires;
     transducer.statistic = mx;
     transducer.null_statistic = mxn;
@@ -106,7 +127,10 @@ class TransducerResponseEffect : public Effect {
                           (worst >= 0 ? " (at " + band_name(worst) + ")" : std::string()) +
                           " from the simulation (threshold " + num(kThresholds.min_db) + " dB at |t| > " + num(t_crit) +
                           "), and the tail's shape correlates with it at r = " + num(corr) + " (needs > " +
-                          num(kThresholds.min_correlation) + "); seed-vs-seed " + num(mxn) + " dB, r = " + num(corrn) + ".";
+                          num(kThresholds.min_correlation) + "); seed-vs-seed " + num(mxn) + " dB, r = " + num(corrn) + "." +
+                          (directional ? std::string(" The direct sound is taken net of the detected source directivity") +
+                                             (refitted ? ", both against band-refitted simulations." : ".")
+                                       : std::string());
     // The report's shape plot (bands the direct window does not resolve stay 0: not plotted).
     transducer.curves["direct_shape_db"].assign(ds.begin(), ds.end());
     transducer.curves["tail_shape_db"].assign(ts.begin(), ts.end());
@@ -123,6 +147,12 @@ class TransducerResponseEffect : public Effect {
       std::vector<double> d;
       for (size_t i : ctx.fit_index()) d.push_back(obs.meas[i].direct_band_db[b] - obs.sim_a[i].direct_band_db[b]);
       gain[b] = median_of(d);
+    }
+    if (ctx.detected("source_directivity")) {
+      const auto& di = ctx.finding("source_directivity").parameters;  // one "di<band>_db" per band
+      for (int b = 0; b < kNumOctaveBands && b < static_cast<int>(di.size()); ++b) {
+        if (std::isfinite(gain[b])) gain[b] -= di[b].second;
+      }
     }
     // Bands the short direct window cannot resolve (below 500 Hz) take the tail's level
     // difference, aligned to the direct-sound estimate over the bands both resolve (the tail

@@ -11,6 +11,7 @@
 #include "sim/onset_shift.h"
 #include "sim/room_modes.h"
 #include "sim/room_refits.h"
+#include "sim/source_directivity.h"
 #include "sim/transducer.h"
 
 namespace tsrir::sim {
@@ -34,6 +35,9 @@ std::vector<Extension> extensions() {
        [](ComponentParams& p) { return std::make_unique<BandAbsorptionComponent>(p); }},
       {"scattering", "scattering coefficient refit (params: value=0.1, all bands)",
        [](ComponentParams& p) { return std::make_unique<ScatteringComponent>(p); }},
+      {"directivity", "directional source aimed at the microphone: direct sound raised by the directivity index "
+                      "(params: di62.5..di8000 dB, default 0)",
+       [](ComponentParams& p) { return std::make_unique<SourceDirectivityComponent>(p); }},
       {"transducer", "minimum-phase transducer colouration (params: g62.5..g8000 dB)",
        [](ComponentParams& p) { return std::make_unique<TransducerComponent>(p); }},
       {"onset_shift", "measurement timing (params: latency_ms=0, align_ms=0 = off)",

@@ -1,5 +1,5 @@
 // The model extensions rir-diagnose fits (one per cause of its catalog that needs a component):
-// modes, air, band_absorption, scattering, transducer, onset_shift, noise_floor.
+// modes, air, band_absorption, scattering, directivity, transducer, onset_shift, noise_floor.
 // Two ways to make them available:
 //  - register_extension_components(): from a program or library, before the first Model::parse
 //    (idempotent; rir-diagnose does this);

@@ -11,7 +11,7 @@
 //                                                 onset shift, noise floor)
 // Within a stage, components run in ascending order() (ties: by name), never in the order the
 // user wrote them, so "gas+air" and "air+gas" are the same model. Orders in use:
-//   kBands: ism 100, diffuse 200 (reads what ism left in RenderContext::facts);
+//   kBands: ism 100, directivity 150, diffuse 200 (reads what ism left in RenderContext::facts);
 //           suggested: air absorption 300.
 //   kBroadband: suggested modes 100, transducer 200, onset shift 300, noise floor 400.
 // Components are immutable after construction and shared by all threads: render hooks are const

@@ -12,7 +12,9 @@
 #include "sim/model.h"
 #include "sim/onset_shift.h"
 #include "sim/room_modes.h"
+#include "sim/source_directivity.h"
 #include "sim/transducer.h"
+#include "util/error.h"
 
 namespace tsrir {
 namespace {
@@ -43,6 +45,54 @@ TEST(AirAbsorption, BandDecayIncreaseIsBetweenTheBandEdgeRates) {
     EXPECT_GT(inc, lo);
     EXPECT_LT(inc, hi);
   }
+}
+
+// A directional source of the same power: the direct sound, and nothing else, is raised by the
+// directivity index (its amplitude by 10^(DI/20)); where the index differs by band, so does the rise.
+TEST(SourceDirectivity, RaisesTheDirectSoundAloneByTheDirectivityIndex) {
+  sim::register_extension_components();
+  sim::RoomSpec room = test_room();
+  room.source_m = {3.0, 2.4, 1.5};
+  room.mic_m = {4.0, 2.4, 1.5};  // 1 m; the first reflection arrives 6 ms after the direct sound
+  const double fs = 16000.0;
+  const size_t n = 8000;
+  const Signal omni = sim::Model::parse("gas").render(room, fs, n, 3);
+  const Signal flat = sim::Model::parse("gas+directivity:di62.5=6,di125=6,di250=6,di500=6,di1000=6,di2000=6,di4000=6,"
+                                        "di8000=6").render(room, fs, n, 3);
+  // The omni direct sound alone: the image sources without the diffuse tail (which starts at the
+  // direct sound), up to the first reflection.
+  const Signal images = sim::Model::parse("ism").render(room, fs, n, 3);
+  const long direct = std::lround(1.0 / room.speed_of_sound_m_s * fs);
+  const long half = static_cast<long>(0.001 * fs);
+  double inside = 0.0, outside = 0.0, projection = 0.0, omni_energy = 0.0;
+  for (long i = 0; i < static_cast<long>(n); ++i) {
+    const double diff = flat.samples[i] - omni.samples[i];
+    if (std::labs(i - direct) <= half) {
+      inside += diff * diff;
+      projection += diff * images.samples[i];
+      omni_energy += double(images.samples[i]) * images.samples[i];
+    } else {
+      outside += diff * diff;
+    }
+  }
+  // Only the direct sound moves, and by 10^(6/20) - 1 of itself.
+  EXPECT_LT(outside, 1e-9 * inside);
+  EXPECT_NEAR(projection / omni_energy, std::pow(10.0, 6.0 / 20.0) - 1.0, 2e-3);
+
+  // A directivity index in the 4 kHz band only: the added sound lies in that band.
+  const Signal high = sim::Model::parse("gas+directivity:di4000=6").render(room, fs, n, 3);
+  std::vector<float> added(n);
+  for (size_t i = 0; i < n; ++i) added[i] = high.samples[i] - omni.samples[i];
+  const size_t nfft = 1 << 14;
+  const auto spec = rfft(added, nfft);
+  double in_band = 0.0, total = 0.0;
+  for (size_t k = 0; k < spec.size(); ++k) {
+    const double f = k * fs / nfft, e = std::norm(spec[k]);
+    total += e;
+    if (f >= 4000.0 / std::sqrt(2.0) && f <= 4000.0 * std::sqrt(2.0)) in_band += e;
+  }
+  EXPECT_GT(in_band, 0.8 * total);
+  EXPECT_THROW(sim::Model::parse("gas+directivity:di1000=25"), Error);
 }
 
 TEST(Transducer, FilterIsMinimumPhaseWithTheRequestedBandGains) {

@@ -88,8 +88,18 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
   }
   const double peak_to_noise_db = drawn(rng, options, "peak_to_noise_db", 35.0, 55.0);
   bool pink = rng.uniform() < 0.5;
-  if (options.fixed.count("noise_re_tail")) pink = false;  // the sweeps use white noise
+  if (options.fixed.count("noise_re_tail") || options.fixed.count("noise_late_decay_db")) pink = false;  // sweeps: white
   const double latency_ms = drawn(rng, options, "latency_ms", 2.0, 12.0);
+  // A small measurement loudspeaker's directivity index: ~0 at 125 Hz and below, rising over four
+  // octaves to its high-frequency value at 2 kHz and above (drawn last: adding it changed no other
+  // draw of the sets above).
+  const double directivity_db = drawn(rng, options, "directivity_db", 4.0, 8.0);
+  sim::BandValues directivity{};
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    directivity[b] = options.fixed.count("directivity_flat_db")
+                         ? options.fixed.at("directivity_flat_db")
+                         : directivity_db * std::clamp(std::log2(kOctaveCentersHz[b] / 125.0) / 4.0, 0.0, 1.0);
+  }
   const double size_factor = 1.0 + options.size_error;
 
   if (effects.count("band_absorption")) {
@@ -102,6 +112,9 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
     set.truth["pink"] = pink;
   }
   if (effects.count("time_offset")) set.truth["latency_ms"] = latency_ms;
+  if (effects.count("source_directivity")) {
+    for (int b = 0; b < kNumOctaveBands; ++b) set.truth["directivity_db_" + std::to_string(b)] = directivity[b];
+  }
   if (effects.count("room_modes")) { set.truth["mode_gain_db"] = mode_gain_db; set.truth["mode_decay_factor"] = mode_decay; }
   if (effects.count("transducer_response") || options.highpass_hz > 0.0) {
     std::vector<TestBiquad> full = effects.count("transducer_response") ? chain : std::vector<TestBiquad>{};
@@ -137,6 +150,7 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
       if (options.fixed.count("air_scale")) real.air_scale = options.fixed.at("air_scale");
     }
     if (effects.count("time_offset")) real.latency_s = latency_ms * 1e-3;
+    if (effects.count("source_directivity")) real.directivity_db = directivity;
     if (effects.count("room_modes")) {
       for (int a = 0; a < 3; ++a) real.size_m[a] *= mode_room_scale[a];
       real.mode_gain_db = mode_gain_db;
@@ -185,6 +199,45 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
         double tail = 0.0;
         for (size_t i = n - n / 10; i < n; ++i) tail += double(s.samples[i]) * s.samples[i];
         target = std::sqrt(options.fixed.at("noise_re_tail") * tail / (n / 10));
+      }
+      if (options.fixed.count("noise_late_decay_db")) {
+        // White noise of the power that leaves the noisy RIR decaying by this much between 70-80 %
+        // and 90-100 % of the file, as the median over the 500 Hz-4 kHz octaves (the detector's
+        // statistic): per octave (P7 + N_b) / (P9 + N_b), N_b the noise's share of the octave,
+        // solved for the noise power by bisection in dB.
+        auto band_powers = [&](size_t a, size_t b) {
+          std::vector<float> seg(s.samples.begin() + a, s.samples.begin() + b);
+          const size_t size = next_fast_fft_size(seg.size());
+          const auto spec = rfft(seg, size);
+          std::vector<double> out;
+          for (double fc : {500.0, 1000.0, 2000.0, 4000.0}) {
+            double e = 0.0;
+            for (size_t k = 0; k < spec.size(); ++k) {
+              const double f = k * fs / size;
+              if (f >= fc / std::sqrt(2.0) && f < fc * std::sqrt(2.0)) e += std::norm(spec[k]);
+            }
+            out.push_back(2.0 * e / (double(size) * (b - a)));  // per-sample power in the octave
+          }
+          return out;
+        };
+        const std::vector<double> p7 = band_powers(7 * n / 10, 8 * n / 10), p9 = band_powers(9 * n / 10, n);
+        const double want = options.fixed.at("noise_late_decay_db");
+        auto late_decay = [&](double noise_power) {
+          std::vector<double> d;
+          for (size_t k = 0; k < p7.size(); ++k) {
+            // White noise's share of the octave: its bandwidth over the Nyquist band.
+            const double share = noise_power * (std::sqrt(2.0) - 1.0 / std::sqrt(2.0)) * (500.0 * (1 << k)) / (0.5 * fs);
+            d.push_back(10.0 * std::log10((p7[k] + share) / (p9[k] + share)));
+          }
+          std::sort(d.begin(), d.end());
+          return 0.5 * (d[1] + d[2]);
+        };
+        double lo = -200.0, hi = 100.0;  // noise power, dB re 1
+        for (int it = 0; it < 100; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (late_decay(std::pow(10.0, mid / 10.0)) > want ? lo : hi) = mid;
+        }
+        target = std::sqrt(std::pow(10.0, 0.5 * (lo + hi) / 10.0));
       }
       for (size_t i = 0; i < n; ++i) s.samples[i] += static_cast<float>(noise[i] * target / rms);
       // The noise's power per sample at its 1 kHz spectral density, re the clean RIR's energy

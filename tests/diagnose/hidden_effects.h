@@ -13,6 +13,8 @@
 //   noise_floor         white or pink Gaussian noise (FFT-shaped) at a random peak-to-noise ratio
 //   diffuse_scattering  the true scattering coefficient differs from the stated one
 //   time_offset         a constant system latency (fractional delay of every arrival)
+//   source_directivity  a directional source aimed at the microphone (the generator's pattern on
+//                       every image), directivity index 0 dB at 125 Hz rising to 4-8 dB at 2 kHz
 // Confounds (HiddenOptions) change the truth without hiding a catalog effect: a loudspeaker's
 // low-frequency roll-off, positions and room size that differ from the stated ones.
 #pragma once
@@ -42,10 +44,13 @@ struct HiddenOptions {
   double pre_align_ms = 0.0;
   // Fixed hidden parameters instead of drawn ones (names as in HiddenSet::truth, e.g.
   // "scattering", "peak_to_noise_db", "latency_ms", "mode_gain_db", "absorption_factor_3",
-  // "humidity_percent", "temperature_c", "transducer_scale" (multiplies the biquad gains)), and
+  // "humidity_percent", "temperature_c", "transducer_scale" (multiplies the biquad gains),
+  // "directivity_db" (the high-frequency directivity index)), and
   // for the power sweeps: "air_scale" (multiplies the ISO attenuation), "transducer_peak_db" (the
   // chain is one peaking filter at 1 kHz, Q 1.4, of this gain), "noise_re_tail" (white noise whose
-  // power per sample is this times the clean RIR's mean power over its last 10 %).
+  // power per sample is this times the clean RIR's mean power over its last 10 %),
+  // "directivity_flat_db" (the same directivity index in every band), "noise_late_decay_db" (white
+  // noise at the level that leaves the noisy RIR decaying by this much over its last 30 %).
   std::map<std::string, double> fixed;
 };
 

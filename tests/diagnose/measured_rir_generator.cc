@@ -113,6 +113,24 @@ Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng
                                                               room.air_humidity_percent) * std::log(10.0) / 20.0
                               : 0.0;
   }
+  // Source directivity: per bin and per band, m = Q - 1 of the pattern (m + 1) u^m.
+  bool directional = false;
+  for (double di : room.directivity_db) directional = directional || di != 0.0;
+  std::vector<double> half_m(bins, 0.0), half_log_q(bins, 0.0);
+  sim::BandValues band_m{};
+  sim::Vec3 aim{};
+  if (directional) {
+    for (size_t k = 0; k < bins; ++k) {
+      const double di = (1.0 - w_of[k]) * room.directivity_db[lo_of[k]] + w_of[k] * room.directivity_db[lo_of[k] + 1];
+      const double q = std::pow(10.0, di / 10.0);
+      half_m[k] = 0.5 * (q - 1.0);
+      half_log_q[k] = 0.5 * std::log(q);
+    }
+    for (int b = 0; b < kNumOctaveBands; ++b) band_m[b] = std::pow(10.0, room.directivity_db[b] / 10.0) - 1.0;
+    double norm = 0.0;
+    for (int a = 0; a < 3; ++a) { aim[a] = room.mic_m[a] - room.source_m[a]; norm += aim[a] * aim[a]; }
+    for (double& v : aim) v /= std::sqrt(norm);
+  }
   std::vector<std::complex<double>> spec(bins, 0.0);
   // Scattered energy rain per band on a 1 ms grid.
   const double grid_s = 1e-3;
@@ -140,12 +158,22 @@ Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng
         if (tau >= image_end_s + room.latency_s) continue;
         const int hits = std::abs(kx) + std::abs(ky) + std::abs(kz);
         const double specular_weight = 1.0 - late_weight(tau - room.latency_s);
+        // The direction this image's sound left the real source in: towards the microphone from
+        // the image, mirrored back on every axis with an odd image index.
+        double log_u = 0.0;
+        if (directional) {
+          const double ex = (kx % 2 == 0 ? -dx : dx), ey = (ky % 2 == 0 ? -dy : dy), ez = (kz % 2 == 0 ? -dz : dz);
+          const double cos_theta = (ex * aim[0] + ey * aim[1] + ez * aim[2]) / d;
+          log_u = std::log(std::max(0.5 * (1.0 + cos_theta), 1e-12));
+        }
         for (int b = 0; b < kNumOctaveBands; ++b) {
           const double unscattered = ix.near_hits * log_r[0][b] + ix.far_hits * log_r[1][b] + iy.near_hits * log_r[2][b] +
                                      iy.far_hits * log_r[3][b] + iz.near_hits * log_r[4][b] + iz.far_hits * log_r[5][b];
           lg[b] = unscattered + hits * log_spec[b];
           // The scattered share of this image's energy, air included at the band centre.
-          const double e_unscattered = std::exp(2.0 * unscattered - 2.0 * band_air_np[b] * d) / std::pow(4.0 * kPi * d, 2);
+          const double pattern = directional ? (band_m[b] + 1.0) * std::exp(band_m[b] * log_u) : 1.0;
+          const double e_unscattered =
+              pattern * std::exp(2.0 * unscattered - 2.0 * band_air_np[b] * d) / std::pow(4.0 * kPi * d, 2);
           const double e_scattered = e_unscattered * (1.0 - std::exp(2.0 * hits * log_spec[b]));
           if (e_scattered <= 0.0) continue;
           // Spread over the following mean free time: density (E / T) exp(-(t - tau) / T).
@@ -163,8 +191,9 @@ Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng
         std::complex<double> phasor = 1.0;
         for (size_t k = 0; k < bins; ++k) {
           const int lo = lo_of[k];
-          const double gain = std::exp((1.0 - w_of[k]) * lg[lo] + w_of[k] * lg[lo + 1] - air_np_per_m[k] * d);
-          spec[k] += amp0 * gain * phasor;
+          double log_gain = (1.0 - w_of[k]) * lg[lo] + w_of[k] * lg[lo + 1] - air_np_per_m[k] * d;
+          if (directional) log_gain += half_log_q[k] + half_m[k] * log_u;
+          spec[k] += amp0 * std::exp(log_gain) * phasor;
           phasor *= step;
         }
       }

@@ -20,6 +20,12 @@
 //                and the air's rate added per bin. No calibration against the image energy.
 //   Modal part   (optional) damped sinusoids at the modes of the TRUE room (whose size may differ
 //                from the stated one), random phases, cos mode shapes at the true positions.
+//   Source       (optional) a directional source aimed at the true microphone: power pattern
+//                (m + 1) ((1 + cos theta) / 2)^m with m = Q - 1 (power-normalised: its mean over
+//                the sphere is 1, so the diffuse field keeps its level), Q from the on-axis
+//                directivity index per octave, interpolated in log frequency per bin. Every image
+//                gets the gain of the direction it leaves the real source in (the image's
+//                direction to the microphone, mirrored back per axis), its scattered energy too.
 //   Transducers  RBJ biquads (peaking, shelving, Butterworth high-pass) in direct form I.
 //   Latency      a fractional delay of the whole response (phase ramp on the early part, and
 //                the diffuse envelope shifted).
@@ -50,6 +56,8 @@ struct TrueRoom {
   double mode_gain_db = -100.0;
   double mode_decay_factor = 1.0;
   double mode_max_hz = 180.0;
+  // On-axis directivity index of the source per octave band, dB (all 0: an omni source).
+  sim::BandValues directivity_db{};
 };
 
 // The stated room as the true one (nothing hidden).
