@@ -4,10 +4,14 @@
 # tests/diagnose. For each effect, its hidden strength is swept over K x its detector threshold
 # (bench/diagnose/diagnose_probe.cc --strength: latency 0.6K ms; 1 kHz band decay rate 1.08^K;
 # 4 kHz air decay increase 1.05^K - 1; a 1 kHz transducer peak departing K dB from the band mean;
-# white noise calibrated to a 6K-dB-ish late-decay change; room_modes and diffuse_scattering are
-# swept over their parameter, not threshold-calibrated: mode level 20 log10 K dB, scattering
+# white noise leaving a late decay of 3/K dB (the flatness the decision requires is 3 dB); modes
+# at the level whose prominence statistic is 0.5K dB (a table measured on one seed); a source
+# directivity index of K dB in every band. diffuse_scattering is swept over its parameter, not
+# threshold-calibrated, as the generator's scattering cannot reach 2x its threshold: scattering
 # 0.1 + 0.85 K / 3). Power = fraction of sets where the effect is detected; false alarms = fraction
 # of null sets (nothing hidden) reporting the effect, and of hidden-effect sets reporting another.
+# Then the criteria of issue 16, per effect: power >= 90 % at 2x, false alarms on null sets <= 5 %;
+# exit status 1 when one is not met.
 #   bench/diagnose/power_sweep.sh [build-dir] [seeds per point (5)] [null sets (20)] [raw-dir]
 # (raw-dir keeps the per-set lines; a probe that fails is reported on stderr and not counted.)
 set -euo pipefail
@@ -16,7 +20,7 @@ build=${1:-$root/build}
 seeds=${2:-5}
 nulls=${3:-20}
 strengths="0.5 1 2 3"
-effects="time_offset band_absorption air_absorption transducer_response noise_floor room_modes diffuse_scattering"
+effects="time_offset band_absorption air_absorption transducer_response noise_floor room_modes source_directivity diffuse_scattering"
 ninja -C "$build" diagnose_probe >/dev/null
 probe="$build/bin/diagnose_probe"
 if [ -n "${4:-}" ]; then
@@ -52,3 +56,17 @@ for e in $effects; do
   done
   echo "$row"
 done
+echo
+echo "| effect | power at 2x >= 90 % | false alarms on null sets <= 5 % |"
+echo "|---|---|---|"
+status=0
+for e in $effects; do
+  read -r c2 n2 < <(awk -v e="$e" '$1 == e && $2 == 2 { n++; for (i = 6; i <= NF; ++i) if ($i == e) { c++; break } } END { print c + 0, n + 0 }' "$tmp/hidden")
+  fa=$(grep -c " $e\( \|$\)" "$tmp/null" || true)
+  nn=$(wc -l < "$tmp/null")
+  p_ok=$([ "$n2" -gt 0 ] && [ $((100 * c2)) -ge $((90 * n2)) ] && echo met || echo "NOT met")
+  f_ok=$([ "$nn" -gt 0 ] && [ $((100 * fa)) -le $((5 * nn)) ] && echo met || echo "NOT met")
+  [ "$p_ok" = met ] && [ "$f_ok" = met ] || status=1
+  echo "| $e | $p_ok ($c2/$n2) | $f_ok ($fa/$nn) |"
+done
+exit $status
