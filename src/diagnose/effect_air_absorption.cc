@@ -105,19 +105,13 @@ class AirAbsorptionEffect : public Effect {
   void report_set(const Finding& f, const Diagnosis&, std::ostream& html) const override {
     const std::vector<double>& mean = f.curves.at("mean_log_rate_ratio");
     const std::vector<double>& se = f.curves.at("se_log_rate_ratio");
-    PlotSpec p;
-    p.title = "Decay rate, measured vs simulated (T30)";
-    p.x_label = "octave band, Hz";
-    p.y_label = "rate change, % (+ = decays faster)";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
+    PlotSpec p = octave_band_plot("Decay rate, measured vs simulated (T30)", "rate change, % (+ = decays faster)");
     Series s{"measured/simulated", "#1f77b4", octave_band_axis(), percent(mean)};
     s.points = true;
     for (int b = 0; b < kNumOctaveBands; ++b) s.y_error.push_back(100.0 * std::exp(mean[b]) * se[b] * 2.0);
     Series air{"air fit", "#2ca02c", octave_band_axis(), percent(f.curves.at("air_fit_log_ratio"))};
     air.dashed = true;
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    const Series zero = octave_band_zero_line();
     finite_range({s.y, {0.0, 10.0, -10.0}}, &p.y_min, &p.y_max, 5.0);
     p.series = {zero, s, air};
     html << svg_plot(p);

@@ -98,17 +98,11 @@ class BandAbsorptionEffect : public Effect {
   }
 
   void report_set(const Finding& f, const Diagnosis&, std::ostream& html) const override {
-    PlotSpec p;
-    p.title = "Band level (re broadband), measured - simulated";
-    p.x_label = "octave band, Hz";
-    p.y_label = "dB";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
+    PlotSpec p = octave_band_plot("Band level (re broadband), measured - simulated", "dB");
     Series s{"mean +- 2 s.e.", "#1f77b4", octave_band_axis(), f.curves.at("mean_level_delta_db")};
     s.points = true;
     for (double v : f.curves.at("se_level_delta_db")) s.y_error.push_back(2.0 * v);
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    const Series zero = octave_band_zero_line();
     finite_range({s.y, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
     p.series = {zero, s};
     html << svg_plot(p);

@@ -145,19 +145,13 @@ class SourceDirectivityEffect : public Effect {
   }
 
   void report_set(const Finding& f, const Diagnosis&, std::ostream& html) const override {
-    PlotSpec p;
-    p.title = "Direct-to-tail level ratio, measured - simulated";
-    p.x_label = "octave band, Hz";
-    p.y_label = "dB (+ = more direct sound)";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
+    PlotSpec p = octave_band_plot("Direct-to-tail level ratio, measured - simulated", "dB (+ = more direct sound)");
     Series s{"mean +- 2 s.e.", "#1f77b4", octave_band_axis(), f.curves.at("mean_change_db")};
     s.points = true;
     for (double v : f.curves.at("se_change_db")) s.y_error.push_back(2.0 * v);
     std::vector<double> fitted;
     for (const auto& [k, v] : f.parameters) fitted.push_back(v);
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    const Series zero = octave_band_zero_line();
     p.series = {zero, s};
     if (fitted.size() == static_cast<size_t>(kNumOctaveBands)) {
       Series di{"fitted directivity index", "#2ca02c", octave_band_axis(), fitted};

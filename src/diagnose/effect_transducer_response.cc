@@ -193,13 +193,7 @@ class TransducerResponseEffect : public Effect {
   }
 
   void report_set(const Finding& f, const Diagnosis&, std::ostream& html) const override {
-    PlotSpec p;
-    p.title = "Spectral shape (mean over bands removed)";
-    p.x_label = "octave band, Hz";
-    p.y_label = "measured - simulated, dB";
-    p.log_x = true;
-    p.x_min = 44;
-    p.x_max = 11300;
+    PlotSpec p = octave_band_plot("Spectral shape (mean over bands removed)", "measured - simulated, dB");
     std::vector<double> ds, ts;
     for (int b = 0; b < kNumOctaveBands; ++b) {
       const double d = f.curves.at("direct_shape_db")[b], t = f.curves.at("tail_shape_db")[b];
@@ -209,7 +203,7 @@ class TransducerResponseEffect : public Effect {
     Series a{"direct sound", "#d62728", octave_band_axis(), ds};
     a.points = true;
     Series b{"tail", "#9467bd", octave_band_axis(), ts};
-    Series zero{"", "#999", {44, 11300}, {0, 0}};
+    const Series zero = octave_band_zero_line();
     finite_range({ds, ts, {2.0, -2.0}}, &p.y_min, &p.y_max, 1.0);
     p.series = {zero, a, b};
     html << svg_plot(p);

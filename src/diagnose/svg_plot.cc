@@ -181,6 +181,19 @@ std::string svg_heatmap(const std::string& title, const std::vector<std::vector<
 
 std::vector<double> octave_band_axis() { return std::vector<double>(kOctaveCentersHz.begin(), kOctaveCentersHz.end()); }
 
+PlotSpec octave_band_plot(const std::string& title, const std::string& y_label) {
+  PlotSpec p;
+  p.title = title;
+  p.x_label = "octave band, Hz";
+  p.y_label = y_label;
+  p.log_x = true;
+  p.x_min = 44;
+  p.x_max = 11300;
+  return p;
+}
+
+Series octave_band_zero_line() { return Series{"", "#999", {44, 11300}, {0, 0}}; }
+
 void finite_range(const std::vector<std::vector<double>>& series, double* lo, double* hi, double pad) {
   *lo = INFINITY;
   *hi = -INFINITY;

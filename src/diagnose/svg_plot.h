@@ -36,8 +36,11 @@ std::string svg_heatmap(const std::string& title, const std::vector<std::vector<
 
 std::string html_escape(const std::string& s);
 
-// The octave-band centres (62.5 Hz .. 8 kHz) as an x axis.
+// The octave-band centres (62.5 Hz .. 8 kHz) as an x axis; a plot over them (log x, 44 Hz-11.3 kHz)
+// and its zero line.
 std::vector<double> octave_band_axis();
+PlotSpec octave_band_plot(const std::string& title, const std::string& y_label);
+Series octave_band_zero_line();
 // The range of the finite values of all series, widened by `pad` on both sides ([-1 - pad, 1 + pad]
 // when there is none).
 void finite_range(const std::vector<std::vector<double>>& series, double* lo, double* hi, double pad);
