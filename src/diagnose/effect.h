@@ -35,9 +35,12 @@
 //   1. A new file src/diagnose/effect_<name>.cc with a class derived from Effect (name,
 //      description, thresholds, depends_on, detect, fit, gain_metric, report hooks) and a factory
 //      `std::unique_ptr<Effect> make_<name>_effect()`.
-//   2. One line in builtin_effects.cc (declaration and registration, in catalog order; an effect
-//      comes after those it depends on). (No static-initialiser self-registration: the linker
-//      drops unreferenced objects of static libraries.)
+//   2. In builtin_effects.cc, its factory's declaration and one r.add() line, in catalog order (an
+//      effect comes after those it depends on). (No static-initialiser self-registration: the
+//      linker drops unreferenced objects of static libraries.)
+//   When it interacts with effects already there (it changes their statistic, or theirs changes
+//   its), declare it: depends_on() in the effect that reads the other's finding, and the rule in
+//   both files' header comments (source_directivity: transducer_response and diffuse_scattering).
 //   3. Its test: hide it with the independent generator in tests/diagnose and require finding it.
 #pragma once
 #include <map>
