@@ -14,13 +14,15 @@
 # exit status 1 when one is not met.
 #   bench/diagnose/power_sweep.sh [build-dir] [seeds per point (5)] [null sets (20)] [raw-dir]
 # (raw-dir keeps the per-set lines; a probe that fails is reported on stderr and not counted.)
+# EFFECTS="a b" and STRENGTHS="2" restrict the sweep (e.g. to re-check one effect's calibration);
+# effects left out print no row.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build}
 seeds=${2:-5}
 nulls=${3:-20}
-strengths="0.5 1 2 3"
-effects="time_offset band_absorption air_absorption transducer_response noise_floor room_modes source_directivity diffuse_scattering"
+strengths=${STRENGTHS:-0.5 1 2 3}
+effects=${EFFECTS:-time_offset band_absorption air_absorption transducer_response noise_floor room_modes source_directivity diffuse_scattering}
 ninja -C "$build" diagnose_probe >/dev/null
 probe="$build/bin/diagnose_probe"
 if [ -n "${4:-}" ]; then
@@ -45,8 +47,11 @@ for e in $effects; do
   done
 done
 echo
-echo "| effect | false alarms (null sets) | spurious in other effects' sets | power 0.5x | 1x | 2x | 3x |"
-echo "|---|---|---|---|---|---|---|"
+header="| effect | false alarms (null sets) | spurious in other effects' sets |"
+rule="|---|---|---|"
+for k in $strengths; do header="$header power ${k}x |"; rule="$rule---|"; done
+echo "$header"
+echo "$rule"
 for e in $effects; do
   fa=$(grep -c " $e\( \|$\)" "$tmp/null" || true)
   spur=$(awk -v e="$e" '$1 != e { n++; for (i = 6; i <= NF; ++i) if ($i == e) { c++; break } } END { printf "%d/%d", c, n }' "$tmp/hidden")
@@ -56,6 +61,8 @@ for e in $effects; do
   done
   echo "$row"
 done
+echo
+echo "null sets reporting any effect: $(awk 'NF > 3 { c++ } END { print c + 0 }' "$tmp/null")/$(wc -l < "$tmp/null")$(awk 'NF > 3 { for (i = 4; i <= NF; ++i) n[$i]++ } END { for (e in n) printf " %s %d", e, n[e] }' "$tmp/null")"
 echo
 echo "| effect | power at 2x >= 90 % | false alarms on null sets <= 5 % |"
 echo "|---|---|---|"
