@@ -9,6 +9,8 @@
 
 namespace tsrir {
 
+class OptionsItf;
+
 struct GanTrainOptions {
   std::string real_list;        // rir scp / rir_list / audio file: the "real" domain
   std::string synthetic_list;   // the "synthetic" domain
@@ -25,15 +27,20 @@ struct GanTrainOptions {
   long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
   bool resume = false;
   std::string device = "cpu";   // "cpu" | "cuda"
-  double learning_rate = 1e-4;  // RMSProp (TF semantics); paper: 3e-5
+  double learning_rate = 3e-5;  // RMSProp (TF semantics), generators; the paper's
+  double disc_learning_rate = 1e-4;  // discriminators' learning rate (TTUR); paper: 0 (= learning_rate)
   int disc_updates = 1;         // discriminator updates per generator update; paper: 2
   std::string init = "he";      // "glorot" (paper) | "he" (see gan_networks.h)
-  double cycle_weight = 250.0;  // generator loss weight of each cycle L1 term
-  double identity_weight = 175.0;  // generator loss weight of the identity L1 term
+  double cycle_weight = 25.0;  // generator loss weight of each cycle L1 term; paper: 250
+  double identity_weight = 0.0;  // generator loss weight of the identity L1 term; paper: 175
   double rmsprop_initial_ms = 0.0;  // RMSProp mean-square start: 1 (TF, paper) or 0
   long long warmup_steps = 100;  // learning rate ramped linearly over the first N steps (paper: 0)
   // "original" (tanh output, paper) | "residual" (input + causal correction, gan_networks.h)
   std::string generator = "residual";
+  double correction_max_hz = 500.0;  // residual correction low-passed here (0: full band); gan_settings.h
+  std::string generator_activation = "relu";  // "relu" (paper) | "leaky_relu"; gan_settings.h
+  std::string generator_update = "joint";  // "joint" | "sequential" (paper); gan_settings.h
+  std::string disc_augment = "none";  // "none" (paper) | "shift-gain-polarity"; gan_settings.h
   // Collapse guard: every N steps (0: never) G_SR translates a fixed probe batch of synthetic
   // RIRs; training stops with an Error when the outputs are silent or nearly equal to each other
   // while their inputs are not.
@@ -43,6 +50,8 @@ struct GanTrainOptions {
   // with AVX512-BF16/AMX.
   std::string precision = "float32";
   double progress_interval_s = 10.0;
+
+  void Register(OptionsItf* opts);  // gan_options.cc; the model dir is positional
 };
 
 struct GanTrainResult {
@@ -78,6 +87,8 @@ struct GanTranslateOptions {
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
   // (tests/gan/gan_networks_test.cc). Slower than float32 on CPUs without bfloat16 arithmetic.
   std::string precision = "float32";
+
+  void Register(OptionsItf* opts);  // gan_options.cc; input list and out dir are positional
 };
 
 struct GanTranslateResult {
