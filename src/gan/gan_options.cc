@@ -38,21 +38,30 @@ void register_choice(OptionsItf* opts, const std::string& name, std::string* val
 
 }  // namespace
 
-void GanTrainOptions::Register(OptionsItf* opts) {
-  opts->Register("real", &real_list, "Real RIRs: rir scp, rir_list or one audio file");
-  opts->Register("synthetic", &synthetic_list, "Synthetic RIRs: rir scp, rir_list or one audio file");
-  opts->Register("steps", &steps,
-                 "Total training iterations (each: --disc-updates x (D_R, D_S) updates and the generator update)");
+GanSettings default_training_settings() {
+  GanSettings s;  // the paper's, then the departures (README, ts-rirgan-train --help):
+  s.decoder = "light";          // the up path of the original's code comments, 1/3 of the FLOPs
+  s.learning_rate = 3e-5;       // the paper's, for the generators
+  s.disc_learning_rate = 1e-4;  // paper: the generators' (two time-scale updates)
+  s.disc_updates = 1;           // paper: 2
+  s.init = "he";                // paper: glorot
+  s.cycle_weight = 25.0;        // paper: 250 (with 175 identity, the L1 terms hold the correction at zero)
+  s.identity_weight = 0.0;      // paper: 175
+  s.rmsprop_initial_ms = 0.0;   // paper: 1 (TF1)
+  s.warmup_steps = 100;         // paper: 0
+  s.generator = "residual";     // paper: original (tanh; small models paste one template)
+  s.correction_max_hz = 500.0;  // paper: no such limit
+  s.generator_update = "joint"; // paper: sequential
+  return s;
+}
+
+void GanSettings::Register(OptionsItf* opts) {
   opts->Register("width", &width, "Model width (64 = the paper's model; 4-16 for CPU experiments)");
   register_choice(opts, "decoder", &decoder, {"light", "original"},
                   "Generator up path: original (16w,8w,4w channels: the original's code) or light "
                   "(4w,2w,w: its code comments; 41.4 M instead of 66.6 M parameters at width 64, 1/3 of the FLOPs)");
   opts->Register("batch-size", &batch_size, "RIRs per batch (the paper's is 64)");
   opts->Register("seed", &seed, "Random seed (initialisation and batch order)");
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch (OpenBLAS is kept at 1)");
-  opts->Register("checkpoint-every", &checkpoint_every, "Write checkpoint.pt every N steps");
-  opts->Register("resume", &resume, "Continue from <model-dir>/checkpoint.pt (same settings required)");
-  register_choice(opts, "device", &device, {"cpu", "cuda"}, "Where to run; cuda needs a LibTorch with CUDA and a GPU");
   opts->Register("learning-rate", &learning_rate, "Generators' RMSProp learning rate (the paper's: 3e-5)");
   opts->Register("disc-learning-rate", &disc_learning_rate,
                  "Discriminators' RMSProp learning rate (0 = --learning-rate, the paper)");
@@ -79,6 +88,18 @@ void GanTrainOptions::Register(OptionsItf* opts) {
   register_choice(opts, "generator-update", &generator_update, {"joint", "sequential"},
                   "sequential (the paper: G_SR then G_RS, each on fresh batches) or joint (CycleGAN's "
                   "reference: both generators from one forward, one summed loss)");
+}
+
+void GanTrainOptions::Register(OptionsItf* opts) {
+  opts->Register("real", &real_list, "Real RIRs: rir scp, rir_list or one audio file");
+  opts->Register("synthetic", &synthetic_list, "Synthetic RIRs: rir scp, rir_list or one audio file");
+  opts->Register("steps", &steps,
+                 "Total training iterations (each: --disc-updates x (D_R, D_S) updates and the generator update)");
+  model.Register(opts);
+  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch (OpenBLAS is kept at 1)");
+  opts->Register("checkpoint-every", &checkpoint_every, "Write checkpoint.pt every N steps");
+  opts->Register("resume", &resume, "Continue from <model-dir>/checkpoint.pt (same settings required)");
+  register_choice(opts, "device", &device, {"cpu", "cuda"}, "Where to run; cuda needs a LibTorch with CUDA and a GPU");
   opts->Register("collapse-check-every", &collapse_check_every,
                  "Every N steps translate a fixed probe batch and stop with an error if the outputs are "
                  "silent or nearly equal across inputs (0 = never)");

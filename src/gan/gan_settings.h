@@ -6,6 +6,8 @@
 
 namespace tsrir {
 
+class OptionsItf;
+
 struct GanSettings {
   int width = 64;
   int kernel_length = 25;
@@ -62,7 +64,16 @@ struct GanSettings {
   std::string precision = "float32";  // training arithmetic: "float32" | "bfloat16" (autocast)
   std::string real_list;
   std::string synthetic_list;
+
+  // The model's and training's options (gan_options.cc): everything above but the fixed shape
+  // (kernel, slice, rate) and the lists, which ts-rirgan-train takes as --real/--synthetic.
+  void Register(OptionsItf* opts);
 };
+
+// The toolkit's training defaults (gan_options.cc), which depart from the paper's where the
+// member initialisers above (the paper's, read for keys an older settings file lacks) do not pass
+// the translation-fidelity suite.
+GanSettings default_training_settings();
 
 // Width multipliers of the generator's first three transposed convs for `decoder` (Error if the
 // name is neither "original" nor "light").

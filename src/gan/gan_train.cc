@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "gan/gan_input.h"
@@ -431,50 +432,58 @@ std::string format_row(long long step, const StepLosses& L, double seconds) {
 void validate(const GanTrainOptions& o) {
   if (o.real_list.empty() || o.synthetic_list.empty()) throw Error("--real and --synthetic are required");
   if (o.steps < 1) throw Error("--steps must be >= 1");
-  if (o.width < 1 || o.width > 1024) throw Error("--width must be in [1, 1024]");
-  if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
+  if (o.model.width < 1 || o.model.width > 1024) throw Error("--width must be in [1, 1024]");
+  if (o.model.batch_size < 1) throw Error("--batch-size must be >= 1");
   if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
   if (o.checkpoint_every < 1) throw Error("--checkpoint-every must be >= 1");
-  if (o.disc_updates < 1) throw Error("--disc-updates must be >= 1");
-  if (!(o.learning_rate > 0) || !std::isfinite(o.learning_rate)) throw Error("--learning-rate must be > 0");
-  gan::parse_init_kind(o.init);
+  if (o.model.disc_updates < 1) throw Error("--disc-updates must be >= 1");
+  if (!(o.model.learning_rate > 0) || !std::isfinite(o.model.learning_rate)) throw Error("--learning-rate must be > 0");
+  gan::parse_init_kind(o.model.init);
   int multipliers[3];
-  decoder_multipliers(o.decoder, multipliers);
-  if (o.rmsprop_initial_ms != 0.0 && o.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
-  if (!(o.cycle_weight >= 0) || !std::isfinite(o.cycle_weight)) throw Error("--cycle-weight must be >= 0");
-  if (!(o.identity_weight >= 0) || !std::isfinite(o.identity_weight)) throw Error("--identity-weight must be >= 0");
-  if (o.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
-  if (o.generator != "original" && o.generator != "residual") {
-    throw Error("--generator must be original or residual, got '" + o.generator + "'");
+  decoder_multipliers(o.model.decoder, multipliers);
+  if (o.model.rmsprop_initial_ms != 0.0 && o.model.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
+  if (!(o.model.cycle_weight >= 0) || !std::isfinite(o.model.cycle_weight)) throw Error("--cycle-weight must be >= 0");
+  if (!(o.model.identity_weight >= 0) || !std::isfinite(o.model.identity_weight)) throw Error("--identity-weight must be >= 0");
+  if (o.model.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
+  if (o.model.generator != "original" && o.model.generator != "residual") {
+    throw Error("--generator must be original or residual, got '" + o.model.generator + "'");
   }
-  if (o.correction_max_hz != 0.0) gan::correction_lowpass_taps(o.correction_max_hz);
-  if (o.disc_augment != "none" && o.disc_augment != "shift-gain-polarity") {
-    throw Error("--disc-augment must be none or shift-gain-polarity, got '" + o.disc_augment + "'");
+  if (o.model.correction_max_hz != 0.0) gan::correction_lowpass_taps(o.model.correction_max_hz);
+  if (o.model.disc_augment != "none" && o.model.disc_augment != "shift-gain-polarity") {
+    throw Error("--disc-augment must be none or shift-gain-polarity, got '" + o.model.disc_augment + "'");
   }
-  if (o.generator_update != "sequential" && o.generator_update != "joint") {
-    throw Error("--generator-update must be sequential or joint, got '" + o.generator_update + "'");
+  if (o.model.generator_update != "sequential" && o.model.generator_update != "joint") {
+    throw Error("--generator-update must be sequential or joint, got '" + o.model.generator_update + "'");
   }
   if (o.collapse_check_every < 0) throw Error("--collapse-check-every must be >= 0");
-  if (o.precision != "float32" && o.precision != "bfloat16") {
-    throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
+  if (o.model.precision != "float32" && o.model.precision != "bfloat16") {
+    throw Error("--precision must be float32 or bfloat16, got '" + o.model.precision + "'");
   }
-  if (o.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
+  if (o.model.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
 }
 
+// Every stored setting must match, but the learning rates (a hand-made schedule), the lists (the
+// same data may have moved) and the initialisers (they only matter when a model is created);
+// compared on the settings text, so that a new setting is compared too.
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
   check_same_architecture(saved, asked, where + " (give the --width, --decoder and --generator it was trained with)");
+  auto lines = [](const GanSettings& s) {
+    std::map<std::string, std::string> kv;
+    std::istringstream in(gan_settings_text(s));
+    std::string key, value;
+    while (in >> key && std::getline(in, value)) kv[key] = value.empty() ? value : value.substr(1);
+    return kv;
+  };
+  const std::set<std::string> may_change = {"learning_rate", "disc_learning_rate", "real_list", "synthetic_list",
+                                            "init", "rmsprop_initial_ms"};
+  const auto was = lines(saved), now = lines(asked);
   std::string diff;
-  if (saved.batch_size != asked.batch_size) diff += " --batch-size=" + std::to_string(saved.batch_size);
-  if (saved.seed != asked.seed) diff += " --seed=" + std::to_string(saved.seed);
-  if (saved.disc_updates != asked.disc_updates) diff += " --disc-updates=" + std::to_string(saved.disc_updates);
-  if (saved.cycle_weight != asked.cycle_weight) diff += " --cycle-weight=" + format_double(saved.cycle_weight, 10);
-  if (saved.identity_weight != asked.identity_weight) {
-    diff += " --identity-weight=" + format_double(saved.identity_weight, 10);
+  for (const auto& [key, value] : was) {
+    if (may_change.count(key) || (now.count(key) && now.at(key) == value)) continue;
+    std::string option = key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    diff += " --" + option + "=" + value;
   }
-  if (saved.warmup_steps != asked.warmup_steps) diff += " --warmup-steps=" + std::to_string(saved.warmup_steps);
-  if (saved.precision != asked.precision) diff += " --precision=" + saved.precision;
-  if (saved.disc_augment != asked.disc_augment) diff += " --disc-augment=" + saved.disc_augment;
-  if (saved.generator_update != asked.generator_update) diff += " --generator-update=" + saved.generator_update;
   if (!diff.empty()) {
     throw Error(where + ": the model was trained with" + diff + "; --resume continues exactly, so give the same settings (only the learning rates may change)");
   }
@@ -489,26 +498,9 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   gan::set_torch_threads(o.num_threads);
   const torch::Device device = gan::parse_device(o.device);
 
-  GanSettings settings;
-  settings.width = o.width;
-  settings.decoder = o.decoder;
-  settings.batch_size = o.batch_size;
-  settings.seed = o.seed;
-  settings.learning_rate = o.learning_rate;
-  settings.disc_updates = o.disc_updates;
-  settings.disc_learning_rate = o.disc_learning_rate;
-  settings.init = o.init;
-  settings.cycle_weight = o.cycle_weight;
-  settings.identity_weight = o.identity_weight;
-  settings.rmsprop_initial_ms = o.rmsprop_initial_ms;
-  settings.precision = o.precision;
-  settings.warmup_steps = o.warmup_steps;
-  settings.generator = o.generator;
+  GanSettings settings = o.model;
   // The original generator has no correction to band-limit: the option is the residual's only.
-  settings.correction_max_hz = o.generator == "residual" ? o.correction_max_hz : 0.0;
-  settings.generator_update = o.generator_update;
-  settings.generator_activation = o.generator_activation;
-  settings.disc_augment = o.disc_augment;
+  if (settings.generator != "residual") settings.correction_max_hz = 0.0;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
 
@@ -532,14 +524,14 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");
   }
 
-  BatchSampler real(o.seed, "real", load_domain(o.real_list, "real", o.batch_size, o.num_threads));
-  BatchSampler synthetic(o.seed, "synthetic",
-                         load_domain(o.synthetic_list, "synthetic", o.batch_size, o.num_threads));
+  BatchSampler real(o.model.seed, "real", load_domain(o.real_list, "real", o.model.batch_size, o.num_threads));
+  BatchSampler synthetic(o.model.seed, "synthetic",
+                         load_domain(o.synthetic_list, "synthetic", o.model.batch_size, o.num_threads));
 
   // The model dir is the toolkit's: never one holding a user's files, never an input (its lists were
   // noted as inputs while loading the domains).
   claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
-  torch::manual_seed(o.seed);
+  torch::manual_seed(o.model.seed);
   CycleGan model(settings, device);
   GanTrainResult result;
   long long step = 0;
@@ -553,7 +545,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     if (!fs::is_directory(o.model_dir)) throw Error("cannot create model dir " + o.model_dir);
     write_gan_settings_file(settings_path, settings);
     truncate_loss_log(log_path, 0);
-    log_info("model width " + std::to_string(o.width) + ", decoder " + o.decoder + ": " +
+    log_info("model width " + std::to_string(o.model.width) + ", decoder " + o.model.decoder + ": " +
              std::to_string(gan::count_parameters(*model.g_real)) + " parameters per generator, " +
              std::to_string(gan::count_parameters(*model.d_real)) + " per discriminator");
   }

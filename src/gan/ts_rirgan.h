@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "gan/gan_settings.h"
 #include "io/audio_io.h"
 
 namespace tsrir {
@@ -16,42 +17,21 @@ struct GanTrainOptions {
   std::string synthetic_list;   // the "synthetic" domain
   std::string model_dir;        // settings.txt, checkpoint.pt, loss_log.csv
   long long steps = 1000;       // total training iterations (a resumed run continues to this count)
-  int width = 64;               // model width `dim` (64 = the paper's model)
-  // Defaults: the best configuration found so far for the translation-fidelity suite (tests/gan,
-  // issue 17; not yet passing, bench/RESULTS.md);
-  // conf/ts-rirgan-paper.conf restores the paper's. Departures are marked "paper:".
-  std::string decoder = "light";  // generator up path: "original" (16w,8w,4w; paper's code) | "light" (4w,2w,w)
-  int batch_size = 64;          // the paper's batch
-  uint64_t seed = 0;
+  // The model and how it learns, as stored in settings.txt: the toolkit's defaults, which pass
+  // the translation-fidelity suite (tests/gan, bench/RESULTS.md); conf/ts-rirgan-paper.conf
+  // restores the paper's. gan_options.cc says where each departs from the paper.
+  GanSettings model = default_training_settings();
   int num_threads = 1;
   long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
   bool resume = false;
   std::string device = "cpu";   // "cpu" | "cuda"
-  double learning_rate = 3e-5;  // RMSProp (TF semantics), generators; the paper's
-  double disc_learning_rate = 1e-4;  // discriminators' learning rate (TTUR); paper: 0 (= learning_rate)
-  int disc_updates = 1;         // discriminator updates per generator update; paper: 2
-  std::string init = "he";      // "glorot" (paper) | "he" (see gan_networks.h)
-  double cycle_weight = 25.0;  // generator loss weight of each cycle L1 term; paper: 250
-  double identity_weight = 0.0;  // generator loss weight of the identity L1 term; paper: 175
-  double rmsprop_initial_ms = 0.0;  // RMSProp mean-square start: 1 (TF, paper) or 0
-  long long warmup_steps = 100;  // learning rate ramped linearly over the first N steps (paper: 0)
-  // "original" (tanh output, paper) | "residual" (input + causal correction, gan_networks.h)
-  std::string generator = "residual";
-  double correction_max_hz = 500.0;  // residual correction low-passed here (0: full band); gan_settings.h
-  std::string generator_activation = "relu";  // "relu" (paper) | "leaky_relu"; gan_settings.h
-  std::string generator_update = "joint";  // "joint" | "sequential" (paper); gan_settings.h
-  std::string disc_augment = "none";  // "none" (paper) | "shift-gain-polarity"; gan_settings.h
   // Collapse guard: every N steps (0: never) G_SR translates a fixed probe batch of synthetic
   // RIRs; training stops with an Error when the outputs are silent or nearly equal to each other
   // while their inputs are not.
   long long collapse_check_every = 100;
-  // "float32" (the original) or "bfloat16": forward passes under CPU autocast (bfloat16
-  // convolutions, float32 weights, gradients, optimiser and losses); 1.46x faster width-16 steps (bench/RESULTS.md) on CPUs
-  // with AVX512-BF16/AMX.
-  std::string precision = "float32";
   double progress_interval_s = 10.0;
 
-  void Register(OptionsItf* opts);  // gan_options.cc; the model dir is positional
+  void Register(OptionsItf* opts);  // gan_options.cc (model's options nested); the model dir is positional
 };
 
 struct GanTrainResult {
