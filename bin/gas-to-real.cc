@@ -10,7 +10,6 @@
 int main(int argc, char** argv) {
   return tsrir::run_program("gas-to-real", [&]() {
     tsrir::GanTranslateOptions o;
-    std::string model, keep_length = "16000", format = "float";
     tsrir::CommandLine cli(
         "gas-to-real",
         "Translates RIRs with a trained TS-RIRGAN generator (G_SR: synthetic -> real by default).\n"
@@ -28,25 +27,12 @@ int main(int argc, char** argv) {
         "Usage: gas-to-real [options] --model=<model-dir-or-checkpoint> <in-rir-scp> <out-dir>\n"
         "Example:\n"
         "  gas-to-real --model=exp/tsrirgan --batch-size=32 --num-threads=4 data/gas/rir.scp data/gsr_gas\n");
-    cli.option("model", &model, "Model dir (ts-rirgan-train output) or its checkpoint.pt");
-    cli.option("direction", &o.direction, "synthetic-to-real (G_SR) or real-to-synthetic (G_RS)");
-    cli.option("batch-size", &o.batch_size, "RIRs per generator call");
-    cli.option("keep-length", &keep_length, "Output length: samples (1..16384) or 'input'");
-    cli.flag("restore-level", &o.restore_level, "Scale each output by its input's peak |x|");
-    cli.option("format", &format, "Output sample format: int16 or float");
-    cli.option("device", &o.device, "cpu or cuda (needs a LibTorch with CUDA and a GPU)");
-    cli.option("num-threads", &o.num_threads, "CPU threads for LibTorch and reading");
-    cli.option("precision", &o.precision,
-               "float32, or bfloat16: 1.8-2.3x faster (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX (slower without), "
-               "output within ~1% RMS of float32");
+    o.Register(&cli);
     tsrir::register_output_options(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);
-    if (model.empty()) throw tsrir::Error("--model is required");
-    o.model = model;
+    if (o.model.empty()) throw tsrir::Error("--model is required");
     o.input_list = args[0];
     o.out_dir = args[1];
-    o.format = tsrir::parse_sample_format(format);
-    o.keep_length = keep_length == "input" ? -1 : tsrir::parse_int(keep_length, "--keep-length");
     const tsrir::GanTranslateResult r = tsrir::translate_rirs(o);
     tsrir::log_info("translated " + std::to_string(r.num_rirs) + " RIRs into " + o.out_dir + " in " +
                     tsrir::format_double(r.translate_s, 3) + " s (model load " +

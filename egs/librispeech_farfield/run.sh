@@ -66,8 +66,8 @@ gan_steps=20000
 gan_width=64
 gan_batch_size=64
 gan_device=cpu
-gan_opts=""           # extra ts-rirgan-train options (default: the program's defaults, the best found for the
-                      # translation-fidelity suite (bench/RESULTS.md); the paper's exact training: "$(grep -v '^#' ../../conf/ts-rirgan-paper.conf)")
+gan_opts=""           # extra ts-rirgan-train options (default: the program's defaults, which pass the
+                      # translation-fidelity suite (bench/RESULTS.md); the paper's exact training: "--config=../../conf/ts-rirgan-paper.conf")
 gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
                       # spin-wait: 2 threads measured ~10x slower than 1 under load)
 metrics_definition=irstats
@@ -116,8 +116,8 @@ done
 if [ "$demo" = true ]; then
   data=demo/data; exp=demo/exp; results=demo/RESULTS.md; stop_stage=7
   nj=2; num_threads=2; gan_num_threads=1; write_wavs=true
-  # The program's defaults (the best configuration found for tests/gan's translation-fidelity
-  # suite, issue 17); ts-rirgan-train stops with an error if its generator collapses.
+  # The program's defaults (the configuration that passes tests/gan's translation-fidelity suite,
+  # issue 17); ts-rirgan-train stops with an error if its generator collapses.
   gan_opts=""
   case $demo_size in
     # Steps and width bound the demo's GAN training on 2 cores. The small demo trains exactly the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "io/atomic_output.h"
 #include "util/error.h"
@@ -11,6 +12,7 @@ namespace gan {
 namespace {
 
 constexpr const char* kCheckpointTag = "tsrir-ts-rirgan-checkpoint-v1";
+constexpr double kResidualInitGain = 0.1;
 
 // `fan` is the number of inputs summed into one output (in*k for a conv, in*k/stride for the
 // transposed conv), used by kHe only.
@@ -163,8 +165,38 @@ torch::Tensor SameConvTranspose1dImpl::forward(const torch::Tensor& x) {
       .reshape({batch, out_channels_, stride_ * length});
 }
 
+std::vector<float> correction_lowpass_taps(double max_hz) {
+  constexpr double kRateHz = 16000.0;
+  if (!(max_hz > 0 && max_hz < kRateHz / 2)) throw Error("--correction-max-hz must be in (0, 8000) or 0");
+  // Blackman-windowed sinc whose stopband (below -70 dB) starts at max_hz: a transition band of
+  // max_hz / 3 (Blackman: ~5.5 fs / taps wide) below it, the -6 dB point in its middle.
+  const double transition_hz = max_hz / 3.0;
+  const double cutoff_hz = max_hz - transition_hz / 2.0;
+  int taps = int(std::lround(5.5 * kRateHz / transition_hz)) | 1;
+  taps = std::min(taps, 8191);
+  const int mid = taps / 2;
+  const double fc = cutoff_hz / kRateHz;
+  std::vector<double> h(taps);
+  double sum = 0;
+  for (int n = 0; n < taps; ++n) {
+    const double k = double(n - mid);
+    const double sinc = k == 0 ? 2 * fc : std::sin(2 * M_PI * fc * k) / (M_PI * k);
+    const double phase = 2 * M_PI * double(n) / double(taps - 1);
+    h[n] = sinc * (0.42 - 0.5 * std::cos(phase) + 0.08 * std::cos(2 * phase));
+    sum += h[n];
+  }
+  std::vector<float> out(taps);
+  for (int n = 0; n < taps; ++n) out[n] = float(h[n] / sum);
+  return out;
+}
+
 GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const std::string& decoder,
-                             const std::string& kind) {
+                             const std::string& kind, double correction_max_hz, const std::string& activation) {
+  if (activation == "leaky_relu") {
+    negative_slope_ = 0.2;
+  } else if (activation != "relu") {
+    throw Error("--generator-activation must be relu or leaky_relu, got '" + activation + "'");
+  }
   if (kind != "original" && kind != "residual") {
     throw Error("--generator must be original or residual, got '" + kind + "'");
   }
@@ -187,17 +219,49 @@ GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const 
                                   SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4, init)));
   }
   if (residual_) {
-    // The correction starts at zero: a new residual generator is the identity.
+    // The correction starts small but not zero: the last layer's initial weights are scaled down
+    // 10x (-20 dB re a unit-RMS input), so a new residual generator is the identity within a small
+    // random correction. Not exactly zero, because the translation has to ADD energy (room modes of
+    // random phase): at a zero correction the gradient of any energy-like feature of the output
+    // with respect to the correction is zero too (d|c|^2/dc = 2c), a saddle that training leaves
+    // only by chance (issue 17: identical runs stayed the identity for some seeds, not others).
     torch::NoGradGuard no_grad;
-    up_.back()->weight.zero_();
+    up_.back()->weight.mul_(kResidualInitGain);
     up_.back()->bias.zero_();
   }
+  if (correction_max_hz > 0) {
+    if (!residual_) throw Error("--correction-max-hz needs --generator=residual (it band-limits the correction)");
+    const std::vector<float> taps = correction_lowpass_taps(correction_max_hz);
+    // A buffer (moves with the module), not a parameter: the band is fixed, not learned.
+    lowpass_ = register_buffer("correction_lowpass",
+                               torch::tensor(taps, torch::kFloat).view({1, 1, int64_t(taps.size())}));
+  }
+}
+
+Generator make_generator(const GanSettings& s, InitKind init) {
+  return Generator(s.width, s.kernel_length, init, s.decoder, s.generator, s.correction_max_hz,
+                   s.generator_activation);
+}
+
+torch::Tensor GeneratorImpl::activate(const torch::Tensor& x) const {
+  return negative_slope_ > 0 ? torch::leaky_relu(x, negative_slope_) : torch::relu(x);
 }
 
 torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
   const torch::Tensor input = x;
-  for (auto& layer : down_) x = torch::relu(layer->forward(x));
-  for (size_t i = 0; i + 1 < up_.size(); ++i) x = torch::relu(up_[i]->forward(x));
+  torch::Tensor scale;
+  if (residual_) {
+    // The network sees each RIR at unit RMS and its correction is scaled back by that RMS. A
+    // peak-normalised RIR is mostly a quiet tail (RMS ~1e-2), so without this every hidden
+    // activation is ~1e-2 and the last layer's weights would have to grow to O(1) to make a
+    // correction of the input's own size: thousands of lr-sized RMSProp steps. The scale is a
+    // property of the input, not learned, so no gradient flows through it.
+    torch::NoGradGuard no_grad;
+    scale = input.to(torch::kFloat).pow(2).mean(-1, true).sqrt().clamp_min(1e-8).to(input.scalar_type());
+  }
+  if (residual_) x = input / scale;
+  for (auto& layer : down_) x = activate(layer->forward(x));
+  for (size_t i = 0; i + 1 < up_.size(); ++i) x = activate(up_[i]->forward(x));
   if (residual_) {
     // Causal correction: an RIR is silent before its direct sound, so nothing is added before
     // the input's onset (its first sample within 20 dB of its peak, as ISO 3382's onset).
@@ -210,7 +274,14 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
       const torch::Tensor position = torch::arange(input.size(-1), onset.options()).view({1, 1, -1});
       mask = (position >= onset).to(input.scalar_type());
     }
-    return input + up_.back()->forward(x).to(input.scalar_type()) * mask;
+    torch::Tensor correction = up_.back()->forward(x);
+    if (lowpass_.defined()) {
+      // Linear phase, centred: 'same' length, no delay.
+      const int64_t half = lowpass_.size(2) / 2;
+      correction = torch::conv1d(torch::constant_pad_nd(correction, {half, half}, 0.0),
+                                 lowpass_.to(correction.scalar_type()));
+    }
+    return input + correction.to(input.scalar_type()) * (mask * scale);
   }
   return torch::tanh(up_.back()->forward(x));
 }
@@ -254,8 +325,8 @@ void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
 CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   // Construction order fixes which random numbers each network's initialiser draws.
   const InitKind init = parse_init_kind(s.init);
-  g_real = Generator(s.width, s.kernel_length, init, s.decoder, s.generator);
-  g_synthetic = Generator(s.width, s.kernel_length, init, s.decoder, s.generator);
+  g_real = make_generator(s, init);
+  g_synthetic = make_generator(s, init);
   d_real = Discriminator(s.width, s.kernel_length, init);
   d_synthetic = Discriminator(s.width, s.kernel_length, init);
   torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
@@ -265,7 +336,9 @@ CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   }
 }
 
-void set_torch_threads(int num_threads) { torch::set_num_threads(std::max(1, num_threads)); }
+void set_torch_threads(int num_threads) {
+  torch::set_num_threads(std::max(1, num_threads));
+}
 
 torch::Device parse_device(const std::string& name) {
   if (name == "cpu") return torch::kCPU;
@@ -336,8 +409,7 @@ Generator load_generator(const std::string& path, const std::string& name, GanSe
   torch::serialize::InputArchive archive;
   open_archive(path, archive);
   *settings = archive_settings(archive, path);
-  Generator generator(settings->width, settings->kernel_length, InitKind::kGlorot, settings->decoder,
-                      settings->generator);
+  Generator generator = make_generator(*settings, InitKind::kGlorot);
   for (auto& item : generator->named_parameters()) {
     read_into(archive, archive_key(name, item.key()), item.value(), path);
   }

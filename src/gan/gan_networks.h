@@ -64,14 +64,22 @@ TORCH_MODULE(SameConvTranspose1d);
 // to 17 ms). The paper's form has to rebuild every RIR's
 // fine structure through the bottleneck; small CPU models never learn to and output one
 // input-independent template instead (issue 17).
+// correction_max_hz > 0 (residual only): the correction passes a fixed linear-phase low-pass
+// (Blackman-windowed sinc, stopband below -70 dB from correction_max_hz up, -6 dB at 5/6 of it)
+// before the causal mask, so above correction_max_hz the output is the input itself
+// (gan_settings.h says why).
 class GeneratorImpl : public torch::nn::Module {
  public:
   GeneratorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot,
-                const std::string& decoder = "original", const std::string& kind = "original");
+                const std::string& decoder = "original", const std::string& kind = "original",
+                double correction_max_hz = 0.0, const std::string& activation = "relu");
   torch::Tensor forward(torch::Tensor x);
 
  private:
+  torch::Tensor activate(const torch::Tensor& x) const;
   bool residual_ = false;
+  double negative_slope_ = 0.0;  // 0: ReLU (the original); 0.2: leaky
+  torch::Tensor lowpass_;  // [1, 1, taps] when band-limited, else undefined
   std::vector<SameConv1d> down_;
   std::vector<SameConvTranspose1d> up_;
 };
@@ -108,6 +116,11 @@ class TfRmsProp {
   std::vector<torch::Tensor> params_, mean_square_;
   double learning_rate_, decay_, epsilon_;
 };
+
+// A generator as `settings` describe it (width, kernel, decoder, generator kind, correction band).
+Generator make_generator(const GanSettings& settings, InitKind init);
+// The low-pass taps of a band-limited correction (odd length, unit DC gain), at 16 kHz.
+std::vector<float> correction_lowpass_taps(double cutoff_hz);
 
 // The four networks and their optimisers.
 struct CycleGan {

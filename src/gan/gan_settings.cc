@@ -35,6 +35,7 @@ std::string gan_settings_text(const GanSettings& s) {
      << "batch_size " << s.batch_size << "\n"
      << "seed " << s.seed << "\n"
      << "learning_rate " << format_double(s.learning_rate, 17) << "\n"
+     << "disc_learning_rate " << format_double(s.disc_learning_rate, 17) << "\n"
      << "disc_updates " << s.disc_updates << "\n"
      << "init " << s.init << "\n"
      << "cycle_weight " << format_double(s.cycle_weight, 17) << "\n"
@@ -42,6 +43,10 @@ std::string gan_settings_text(const GanSettings& s) {
      << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 17) << "\n"
      << "decoder " << s.decoder << "\n"
      << "generator " << s.generator << "\n"
+     << "correction_max_hz " << format_double(s.correction_max_hz, 17) << "\n"
+     << "generator_activation " << s.generator_activation << "\n"
+     << "generator_update " << s.generator_update << "\n"
+     << "disc_augment " << s.disc_augment << "\n"
      << "precision " << s.precision << "\n"
      << "warmup_steps " << s.warmup_steps << "\n"
      << "real_list " << s.real_list << "\n"
@@ -80,6 +85,8 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
       s.seed = parse_seed(value, ctx);
     } else if (key == "learning_rate") {
       s.learning_rate = parse_double(value, ctx);
+    } else if (key == "disc_learning_rate") {
+      s.disc_learning_rate = parse_double(value, ctx);
     } else if (key == "disc_updates") {
       s.disc_updates = int(parse_int(value, ctx));
     } else if (key == "init") {
@@ -97,6 +104,22 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
     } else if (key == "generator") {
       if (value != "original" && value != "residual") throw Error(ctx + ": generator must be original or residual");
       s.generator = value;
+    } else if (key == "correction_max_hz") {
+      s.correction_max_hz = parse_double(value, ctx);
+      if (!(s.correction_max_hz >= 0 && s.correction_max_hz < 8000)) {
+        throw Error(ctx + ": correction_max_hz must be in [0, 8000)");
+      }
+    } else if (key == "generator_activation") {
+      if (value != "relu" && value != "leaky_relu") throw Error(ctx + ": generator_activation must be relu or leaky_relu");
+      s.generator_activation = value;
+    } else if (key == "disc_augment") {
+      if (value != "none" && value != "shift-gain-polarity") {
+        throw Error(ctx + ": disc_augment must be none or shift-gain-polarity");
+      }
+      s.disc_augment = value;
+    } else if (key == "generator_update") {
+      if (value != "sequential" && value != "joint") throw Error(ctx + ": generator_update must be sequential or joint");
+      s.generator_update = value;
     } else if (key == "warmup_steps") {
       s.warmup_steps = parse_int(value, ctx);
       if (s.warmup_steps < 0) throw Error(ctx + ": warmup_steps must be >= 0");
@@ -147,12 +170,14 @@ void check_same_architecture(const GanSettings& expected, const GanSettings& fou
                              const std::string& what) {
   if (expected.width != found.width || expected.kernel_length != found.kernel_length ||
       expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz ||
-      expected.decoder != found.decoder || expected.generator != found.generator) {
+      expected.decoder != found.decoder || expected.generator != found.generator ||
+      expected.correction_max_hz != found.correction_max_hz ||
+      expected.generator_activation != found.generator_activation) {
     throw Error(what + ": model width " + std::to_string(found.width) + " (decoder " + found.decoder +
-                ", generator " + found.generator +
+                ", generator " + found.generator + ", correction max " + format_double(found.correction_max_hz, 6) + " Hz, activation " + found.generator_activation +
                 ", kernel " + std::to_string(found.kernel_length) + "), expected width " +
                 std::to_string(expected.width) + " (decoder " + expected.decoder + ", generator " +
-                expected.generator + ", kernel " +
+                expected.generator + ", correction max " + format_double(expected.correction_max_hz, 6) + " Hz, activation " + expected.generator_activation + ", kernel " +
                 std::to_string(expected.kernel_length) + ")");
   }
 }

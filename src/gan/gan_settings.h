@@ -6,6 +6,8 @@
 
 namespace tsrir {
 
+class OptionsItf;
+
 struct GanSettings {
   int width = 64;
   int kernel_length = 25;
@@ -14,6 +16,9 @@ struct GanSettings {
   int batch_size = 64;
   uint64_t seed = 0;
   double learning_rate = 3e-5;
+  // The discriminators' own learning rate (two time-scale updates, Heusel et al. 2017); 0 = the
+  // generators' (the original). Files without the key: 0.
+  double disc_learning_rate = 0.0;
   int disc_updates = 2;
   // Departures from the original for small CPU models (defaults = the original): kernel init
   // ("glorot" | "he", used only when a model is created) and the generators' L1 loss weights.
@@ -28,12 +33,47 @@ struct GanSettings {
   // "original" (tanh output, the paper) or "residual" (output = input + a learned correction that
   // starts at zero). Part of the architecture. Settings files without the key are "original".
   std::string generator = "original";
+  // Residual generators only: the correction is low-passed (nothing left from this frequency up,
+  // in Hz) before it is added, so the translation can change only the low-frequency part of the RIR, where the
+  // geometric simulator's ray assumption fails (room modes, diffraction: the paper's sec. 1-2);
+  // above it the input's own acoustics pass unchanged. 0 = full band. Part of the architecture.
+  // Settings files without the key: 0.
+  double correction_max_hz = 0.0;
+  // Generator hidden activation: "relu" (the original) or "leaky_relu" (slope 0.2, as the original's
+  // discriminators). With plain ReLUs the small activations of RIR inputs (~1e-2: most samples are
+  // a quiet tail) die under RMSProp's first lr-sized bias updates, after which the generator gets no
+  // gradient and a residual one stays the identity for good. Part of the architecture. Files
+  // without the key: relu.
+  std::string generator_activation = "relu";
+  // How the two generators are updated per iteration: "sequential" (the original: a G_SR step and
+  // then a G_RS step, each on fresh batches with its own forward graph, after the discriminator
+  // steps) or "joint" (one forward of both generators on one pair of batches, one summed loss, both
+  // stepped; the discriminators then train on those same translations, detached: CycleGAN's
+  // reference implementation, about 1.6x fewer generator passes). Files without the key: sequential.
+  std::string generator_update = "sequential";
+  // Discriminator input augmentation (Zhao et al. 2020's DiffAugment, for small data sets): "none"
+  // (the original) or "shift-gain-polarity": every RIR a discriminator sees, real or translated, in
+  // its own update and in the generators' adversarial terms, is delayed by 0-50 ms, scaled by
+  // 0.6-1 and its polarity flipped at random. None of these changes what the translation must learn
+  // (a room's spectral and decay character); they stop a discriminator from memorising the few
+  // dozen training RIRs, after which its gradient no longer tells a generator where the real domain
+  // lies. Files without the key: none.
+  std::string disc_augment = "none";
   // Linear learning-rate warm-up over the first N steps (0: none, the original).
   long long warmup_steps = 0;
   std::string precision = "float32";  // training arithmetic: "float32" | "bfloat16" (autocast)
   std::string real_list;
   std::string synthetic_list;
+
+  // The model's and training's options (gan_options.cc): everything above but the fixed shape
+  // (kernel, slice, rate) and the lists, which ts-rirgan-train takes as --real/--synthetic.
+  void Register(OptionsItf* opts);
 };
+
+// The toolkit's training defaults (gan_options.cc), which depart from the paper's where the
+// member initialisers above (the paper's, read for keys an older settings file lacks) do not pass
+// the translation-fidelity suite.
+GanSettings default_training_settings();
 
 // Width multipliers of the generator's first three transposed convs for `decoder` (Error if the
 // name is neither "original" nor "light").

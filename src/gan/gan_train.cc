@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "gan/gan_input.h"
@@ -150,21 +151,59 @@ class AutocastScope {
   bool previous_ = false;
 };
 
+// --disc-augment=shift-gain-polarity (gan_settings.h): per RIR a delay of 0-50 ms (zeros in front,
+// the end dropped), a gain in [0.6, 1] and a random polarity; differentiable, so the generators'
+// adversarial terms see their outputs through it too. Draws depend on (seed, tag, draw) only, so a
+// resumed run augments exactly as an uninterrupted one.
+torch::Tensor augment_for_discriminator(const torch::Tensor& x, uint64_t seed, const std::string& tag, long long draw) {
+  constexpr int64_t kMaxDelaySamples = 800;  // 50 ms at 16 kHz
+  const int64_t batch = x.size(0), length = x.size(2);
+  Rng rng = Rng::for_item(seed, "disc-augment/" + tag + "/" + std::to_string(draw));
+  std::vector<torch::Tensor> parts;
+  for (int64_t b = 0; b < batch; ++b) {
+    const int64_t delay = int64_t(rng.below(kMaxDelaySamples + 1));
+    const double gain = (rng.uniform() < 0.5 ? -1.0 : 1.0) * rng.uniform(0.6, 1.0);
+    torch::Tensor one = x.narrow(0, b, 1);
+    if (delay > 0) one = torch::constant_pad_nd(one.narrow(2, 0, length - delay), {delay, 0}, 0.0);
+    parts.push_back(one * gain);
+  }
+  return torch::cat(parts, 0);
+}
+
 class Trainer {
  public:
   Trainer(CycleGan& model, BatchSampler& real, BatchSampler& synthetic, torch::Device device)
       : m_(model), real_(real), synthetic_(synthetic), device_(device),
         bfloat16_(model.settings.precision == "bfloat16") {}
 
+  // What a discriminator sees of x (the identity unless --disc-augment).
+  torch::Tensor seen(const torch::Tensor& x, const char* tag, long long draw) const {
+    if (m_.settings.disc_augment == "none") return x;
+    return augment_for_discriminator(x, m_.settings.seed, tag, draw);
+  }
+
   StepLosses step(long long step_number) {
     // RMSProp normalises each update by its running gradient scale, so without history (ms0 = 0)
     // the first updates move every weight by ~lr whatever the gradient: the warm-up tames them.
     const long long warmup = m_.settings.warmup_steps;
-    const double rate = m_.settings.learning_rate * (warmup > 0 ? std::min(1.0, double(step_number) / double(warmup)) : 1.0);
-    for (auto& optimizer : m_.optimizers) optimizer.set_learning_rate(rate);
+    const double ramp = warmup > 0 ? std::min(1.0, double(step_number) / double(warmup)) : 1.0;
+    const double g_rate = m_.settings.learning_rate;
+    const double d_rate = m_.settings.disc_learning_rate > 0 ? m_.settings.disc_learning_rate : g_rate;
+    for (size_t i = 0; i < m_.optimizers.size(); ++i) m_.optimizers[i].set_learning_rate(ramp * (i < 2 ? g_rate : d_rate));
+    StepLosses L;
+    if (m_.settings.generator_update == "joint") {
+      const int draws = 2 * m_.settings.disc_updates - 1;
+      long long draw = (step_number - 1) * draws;
+      joint_step(draw++, &L);
+      for (int u = 1; u < m_.settings.disc_updates; ++u) {
+        L.d_real = discriminator_step(m_.d_real, m_.g_real, m_.optimizers[2], draw++, true, "D_real");
+        L.d_synthetic =
+            discriminator_step(m_.d_synthetic, m_.g_synthetic, m_.optimizers[3], draw++, false, "D_synthetic");
+      }
+      return L;
+    }
     const int draws = 2 * m_.settings.disc_updates + 2;
     long long draw = (step_number - 1) * draws;
-    StepLosses L;
     for (int u = 0; u < m_.settings.disc_updates; ++u) {
       L.d_real = discriminator_step(m_.d_real, m_.g_real, m_.optimizers[2], draw++, true, "D_real");
       L.d_synthetic =
@@ -181,26 +220,19 @@ class Trainer {
     return {real_.batch(draw, b).to(device_), synthetic_.batch(draw, b).to(device_)};
   }
 
-  // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
+  // A discriminator step on a fresh pair of batches and its own translation of the other domain.
   double discriminator_step(gan::Discriminator& d, gan::Generator& g, gan::TfRmsProp& optimizer,
                             long long draw, bool real_side, const char* name) {
     auto [x_real, x_synthetic] = batches(draw);
     const torch::Tensor& own = real_side ? x_real : x_synthetic;
     const torch::Tensor& other = real_side ? x_synthetic : x_real;
-    torch::Tensor loss;
+    torch::Tensor fake;
     {
       AutocastScope autocast(bfloat16_);
-      torch::Tensor fake;
-      {
-        torch::NoGradGuard no_grad;
-        fake = g->forward(other);
-      }
-      loss = kDiscriminatorWeight * ((d->forward(own).to(torch::kFloat) - 1.0).pow(2).mean() +
-                                     d->forward(fake).to(torch::kFloat).pow(2).mean());
+      torch::NoGradGuard no_grad;
+      fake = g->forward(other);
     }
-    const double value = checked(loss, name);
-    apply(optimizer, loss);
-    return value;
+    return discriminator_update(d, optimizer, own, fake, draw, name);
   }
 
   // G_SR step (real_side) or G_RS step: adversarial + both cycle terms + own identity term.
@@ -228,7 +260,7 @@ class Trainer {
       const torch::Tensor out_float = out.to(torch::kFloat);
       const torch::Tensor target_cycled = out_float.narrow(0, b, b);
       const torch::Tensor target_same = out_float.narrow(0, 2 * b, b);
-      adv = (d->forward(translated).to(torch::kFloat) - 1.0).pow(2).mean();
+      adv = (d->forward(seen(translated, real_side ? "g/fake_r" : "g/fake_s", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
       cycle_source = (source - f->forward(translated).to(torch::kFloat)).abs().mean();
       cycle_target = (target - target_cycled).abs().mean();
       identity = (target - target_same).abs().mean();
@@ -247,6 +279,67 @@ class Trainer {
       L->adv_synthetic = adv.item<double>();
       L->identity_synthetic = identity.item<double>();
     }
+  }
+
+  // --generator-update=joint: both generators from one pair of batches (CycleGAN's reference
+  // training): G_SR over [s; r] (translation, identity), G_RS over [r; s], then each over the
+  // other's translation (cycles); one summed loss, whose gradient with respect to each
+  // generator's weights is that generator's own loss gradient (the other terms do not depend on
+  // it); both stepped. Then D_R and D_S train on this batch and its translations, detached.
+  void joint_step(long long draw, StepLosses* L) {
+    auto [r, s] = batches(draw);
+    const int64_t b = r.size(0);
+    torch::Tensor fake_r, fake_s;
+    {
+      torch::Tensor adv_r, adv_s, cyc_r, cyc_s, idt_r, idt_s, loss;
+      {
+        AutocastScope autocast(bfloat16_);
+        const torch::Tensor out_sr = m_.g_real->forward(torch::cat({s, r}, 0));
+        const torch::Tensor out_rs = m_.g_synthetic->forward(torch::cat({r, s}, 0));
+        fake_r = out_sr.narrow(0, 0, b);
+        fake_s = out_rs.narrow(0, 0, b);
+        const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
+        const torch::Tensor rec_r = m_.g_real->forward(fake_s).to(torch::kFloat);
+        adv_r = (m_.d_real->forward(seen(fake_r, "g/fake_r", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
+        adv_s = (m_.d_synthetic->forward(seen(fake_s, "g/fake_s", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
+        cyc_s = (s - rec_s).abs().mean();
+        cyc_r = (r - rec_r).abs().mean();
+        idt_r = (r - out_sr.narrow(0, b, b).to(torch::kFloat)).abs().mean();
+        idt_s = (s - out_rs.narrow(0, b, b).to(torch::kFloat)).abs().mean();
+        const double cw = m_.settings.cycle_weight, iw = m_.settings.identity_weight;
+        const torch::Tensor cycles = cw * (cyc_s + cyc_r);
+        L->g_real = checked(adv_r + cycles + iw * idt_r, "G_real");
+        L->g_synthetic = checked(adv_s + cycles + iw * idt_s, "G_synthetic");
+        loss = adv_r + adv_s + cycles + iw * (idt_r + idt_s);
+      }
+      std::vector<torch::Tensor> params = m_.optimizers[0].params();
+      const size_t n_real = params.size();
+      const auto& more = m_.optimizers[1].params();
+      params.insert(params.end(), more.begin(), more.end());
+      const std::vector<torch::Tensor> grads = torch::autograd::grad({loss}, params);
+      m_.optimizers[0].step(std::vector<torch::Tensor>(grads.begin(), grads.begin() + long(n_real)));
+      m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
+      L->adv_real = adv_r.item<double>(), L->adv_synthetic = adv_s.item<double>();
+      L->cycle_real = cyc_r.item<double>(), L->cycle_synthetic = cyc_s.item<double>();
+      L->identity_real = idt_r.item<double>(), L->identity_synthetic = idt_s.item<double>();
+    }
+    L->d_real = discriminator_update(m_.d_real, m_.optimizers[2], r, fake_r.detach(), draw, "D_real");
+    L->d_synthetic = discriminator_update(m_.d_synthetic, m_.optimizers[3], s, fake_s.detach(), draw, "D_synthetic");
+  }
+
+  // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
+  double discriminator_update(gan::Discriminator& d, gan::TfRmsProp& optimizer, const torch::Tensor& own,
+                              const torch::Tensor& fake, long long draw, const char* name) {
+    torch::Tensor loss;
+    {
+      AutocastScope autocast(bfloat16_);
+      const std::string tag = name;
+      loss = kDiscriminatorWeight * ((d->forward(seen(own, (tag + "/own").c_str(), draw)).to(torch::kFloat) - 1.0).pow(2).mean() +
+                                     d->forward(seen(fake, (tag + "/fake").c_str(), draw)).to(torch::kFloat).pow(2).mean());
+    }
+    const double value = checked(loss, name);
+    apply(optimizer, loss);
+    return value;
   }
 
   CycleGan& m_;
@@ -294,6 +387,14 @@ bool parameters_finite(CycleGan& model) {
   return true;
 }
 
+// Finite weights can still be too large to use (an exploding learning rate leaves ~1e30 weights
+// that make Inf outputs): a checkpoint is good only if both generators translate the probe.
+bool generators_finite_on(CycleGan& model, const torch::Tensor& probe) {
+  torch::NoGradGuard no_grad;
+  return torch::isfinite(model.g_real->forward(probe)).all().item<bool>() &&
+         torch::isfinite(model.g_synthetic->forward(probe)).all().item<bool>();
+}
+
 // Keeps the header and the rows up to `last_step` (rows after the resumed checkpoint were lost
 // with the interrupted run and are run again).
 void truncate_loss_log(const std::string& path, long long last_step) {
@@ -331,43 +432,60 @@ std::string format_row(long long step, const StepLosses& L, double seconds) {
 void validate(const GanTrainOptions& o) {
   if (o.real_list.empty() || o.synthetic_list.empty()) throw Error("--real and --synthetic are required");
   if (o.steps < 1) throw Error("--steps must be >= 1");
-  if (o.width < 1 || o.width > 1024) throw Error("--width must be in [1, 1024]");
-  if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
+  if (o.model.width < 1 || o.model.width > 1024) throw Error("--width must be in [1, 1024]");
+  if (o.model.batch_size < 1) throw Error("--batch-size must be >= 1");
   if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
   if (o.checkpoint_every < 1) throw Error("--checkpoint-every must be >= 1");
-  if (o.disc_updates < 1) throw Error("--disc-updates must be >= 1");
-  if (!(o.learning_rate > 0) || !std::isfinite(o.learning_rate)) throw Error("--learning-rate must be > 0");
-  gan::parse_init_kind(o.init);
+  if (o.model.disc_updates < 1) throw Error("--disc-updates must be >= 1");
+  if (!(o.model.learning_rate > 0) || !std::isfinite(o.model.learning_rate)) throw Error("--learning-rate must be > 0");
+  gan::parse_init_kind(o.model.init);
   int multipliers[3];
-  decoder_multipliers(o.decoder, multipliers);
-  if (o.rmsprop_initial_ms != 0.0 && o.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
-  if (!(o.cycle_weight >= 0) || !std::isfinite(o.cycle_weight)) throw Error("--cycle-weight must be >= 0");
-  if (!(o.identity_weight >= 0) || !std::isfinite(o.identity_weight)) throw Error("--identity-weight must be >= 0");
-  if (o.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
-  if (o.generator != "original" && o.generator != "residual") {
-    throw Error("--generator must be original or residual, got '" + o.generator + "'");
+  decoder_multipliers(o.model.decoder, multipliers);
+  if (o.model.rmsprop_initial_ms != 0.0 && o.model.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
+  if (!(o.model.cycle_weight >= 0) || !std::isfinite(o.model.cycle_weight)) throw Error("--cycle-weight must be >= 0");
+  if (!(o.model.identity_weight >= 0) || !std::isfinite(o.model.identity_weight)) throw Error("--identity-weight must be >= 0");
+  if (o.model.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
+  if (o.model.generator != "original" && o.model.generator != "residual") {
+    throw Error("--generator must be original or residual, got '" + o.model.generator + "'");
+  }
+  if (o.model.correction_max_hz != 0.0) gan::correction_lowpass_taps(o.model.correction_max_hz);
+  if (o.model.disc_augment != "none" && o.model.disc_augment != "shift-gain-polarity") {
+    throw Error("--disc-augment must be none or shift-gain-polarity, got '" + o.model.disc_augment + "'");
+  }
+  if (o.model.generator_update != "sequential" && o.model.generator_update != "joint") {
+    throw Error("--generator-update must be sequential or joint, got '" + o.model.generator_update + "'");
   }
   if (o.collapse_check_every < 0) throw Error("--collapse-check-every must be >= 0");
-  if (o.precision != "float32" && o.precision != "bfloat16") {
-    throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
+  if (o.model.precision != "float32" && o.model.precision != "bfloat16") {
+    throw Error("--precision must be float32 or bfloat16, got '" + o.model.precision + "'");
   }
-  if (o.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
+  if (o.model.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
 }
 
+// Every stored setting must match, but the learning rates (a hand-made schedule), the lists (the
+// same data may have moved) and the initialisers (they only matter when a model is created);
+// compared on the settings text, so that a new setting is compared too.
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
   check_same_architecture(saved, asked, where + " (give the --width, --decoder and --generator it was trained with)");
+  auto lines = [](const GanSettings& s) {
+    std::map<std::string, std::string> kv;
+    std::istringstream in(gan_settings_text(s));
+    std::string key, value;
+    while (in >> key && std::getline(in, value)) kv[key] = value.empty() ? value : value.substr(1);
+    return kv;
+  };
+  const std::set<std::string> may_change = {"learning_rate", "disc_learning_rate", "real_list", "synthetic_list",
+                                            "init", "rmsprop_initial_ms"};
+  const auto was = lines(saved), now = lines(asked);
   std::string diff;
-  if (saved.batch_size != asked.batch_size) diff += " --batch-size=" + std::to_string(saved.batch_size);
-  if (saved.seed != asked.seed) diff += " --seed=" + std::to_string(saved.seed);
-  if (saved.disc_updates != asked.disc_updates) diff += " --disc-updates=" + std::to_string(saved.disc_updates);
-  if (saved.cycle_weight != asked.cycle_weight) diff += " --cycle-weight=" + format_double(saved.cycle_weight, 10);
-  if (saved.identity_weight != asked.identity_weight) {
-    diff += " --identity-weight=" + format_double(saved.identity_weight, 10);
+  for (const auto& [key, value] : was) {
+    if (may_change.count(key) || (now.count(key) && now.at(key) == value)) continue;
+    std::string option = key;
+    std::replace(option.begin(), option.end(), '_', '-');
+    diff += " --" + option + "=" + value;
   }
-  if (saved.warmup_steps != asked.warmup_steps) diff += " --warmup-steps=" + std::to_string(saved.warmup_steps);
-  if (saved.precision != asked.precision) diff += " --precision=" + saved.precision;
   if (!diff.empty()) {
-    throw Error(where + ": the model was trained with" + diff + "; --resume continues exactly, so give the same settings (only --learning-rate may change)");
+    throw Error(where + ": the model was trained with" + diff + "; --resume continues exactly, so give the same settings (only the learning rates may change)");
   }
 }
 
@@ -380,20 +498,9 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   gan::set_torch_threads(o.num_threads);
   const torch::Device device = gan::parse_device(o.device);
 
-  GanSettings settings;
-  settings.width = o.width;
-  settings.decoder = o.decoder;
-  settings.batch_size = o.batch_size;
-  settings.seed = o.seed;
-  settings.learning_rate = o.learning_rate;
-  settings.disc_updates = o.disc_updates;
-  settings.init = o.init;
-  settings.cycle_weight = o.cycle_weight;
-  settings.identity_weight = o.identity_weight;
-  settings.rmsprop_initial_ms = o.rmsprop_initial_ms;
-  settings.precision = o.precision;
-  settings.warmup_steps = o.warmup_steps;
-  settings.generator = o.generator;
+  GanSettings settings = o.model;
+  // The original generator has no correction to band-limit: the option is the residual's only.
+  if (settings.generator != "residual") settings.correction_max_hz = 0.0;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
 
@@ -417,14 +524,14 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");
   }
 
-  BatchSampler real(o.seed, "real", load_domain(o.real_list, "real", o.batch_size, o.num_threads));
-  BatchSampler synthetic(o.seed, "synthetic",
-                         load_domain(o.synthetic_list, "synthetic", o.batch_size, o.num_threads));
+  BatchSampler real(o.model.seed, "real", load_domain(o.real_list, "real", o.model.batch_size, o.num_threads));
+  BatchSampler synthetic(o.model.seed, "synthetic",
+                         load_domain(o.synthetic_list, "synthetic", o.model.batch_size, o.num_threads));
 
   // The model dir is the toolkit's: never one holding a user's files, never an input (its lists were
   // noted as inputs while loading the domains).
   claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
-  torch::manual_seed(o.seed);
+  torch::manual_seed(o.model.seed);
   CycleGan model(settings, device);
   GanTrainResult result;
   long long step = 0;
@@ -438,7 +545,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
     if (!fs::is_directory(o.model_dir)) throw Error("cannot create model dir " + o.model_dir);
     write_gan_settings_file(settings_path, settings);
     truncate_loss_log(log_path, 0);
-    log_info("model width " + std::to_string(o.width) + ", decoder " + o.decoder + ": " +
+    log_info("model width " + std::to_string(o.model.width) + ", decoder " + o.model.decoder + ": " +
              std::to_string(gan::count_parameters(*model.g_real)) + " parameters per generator, " +
              std::to_string(gan::count_parameters(*model.d_real)) + " per discriminator");
   }
@@ -464,6 +571,9 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   auto save = [&](long long s) {
     if (!parameters_finite(model)) {
       throw NonFiniteLoss("the parameters after step " + std::to_string(s) + " are not finite");
+    }
+    if (!generators_finite_on(model, probe)) {
+      throw NonFiniteLoss("the generators after step " + std::to_string(s) + " give outputs that are not finite");
     }
     gan::save_checkpoint(checkpoint_path, model, s);
     checkpoint_step = s;

@@ -5,44 +5,33 @@
 #include <cstdint>
 #include <string>
 
+#include "gan/gan_settings.h"
 #include "io/audio_io.h"
 
 namespace tsrir {
+
+class OptionsItf;
 
 struct GanTrainOptions {
   std::string real_list;        // rir scp / rir_list / audio file: the "real" domain
   std::string synthetic_list;   // the "synthetic" domain
   std::string model_dir;        // settings.txt, checkpoint.pt, loss_log.csv
   long long steps = 1000;       // total training iterations (a resumed run continues to this count)
-  int width = 64;               // model width `dim` (64 = the paper's model)
-  // Defaults: the best configuration found so far for the translation-fidelity suite (tests/gan,
-  // issue 17; not yet passing, bench/RESULTS.md);
-  // conf/ts-rirgan-paper.conf restores the paper's. Departures are marked "paper:".
-  std::string decoder = "light";  // generator up path: "original" (16w,8w,4w; paper's code) | "light" (4w,2w,w)
-  int batch_size = 64;          // the paper's batch
-  uint64_t seed = 0;
+  // The model and how it learns, as stored in settings.txt: the toolkit's defaults, which pass
+  // the translation-fidelity suite (tests/gan, bench/RESULTS.md); conf/ts-rirgan-paper.conf
+  // restores the paper's. gan_options.cc says where each departs from the paper.
+  GanSettings model = default_training_settings();
   int num_threads = 1;
   long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
   bool resume = false;
   std::string device = "cpu";   // "cpu" | "cuda"
-  double learning_rate = 1e-4;  // RMSProp (TF semantics); paper: 3e-5
-  int disc_updates = 1;         // discriminator updates per generator update; paper: 2
-  std::string init = "he";      // "glorot" (paper) | "he" (see gan_networks.h)
-  double cycle_weight = 250.0;  // generator loss weight of each cycle L1 term
-  double identity_weight = 175.0;  // generator loss weight of the identity L1 term
-  double rmsprop_initial_ms = 0.0;  // RMSProp mean-square start: 1 (TF, paper) or 0
-  long long warmup_steps = 100;  // learning rate ramped linearly over the first N steps (paper: 0)
-  // "original" (tanh output, paper) | "residual" (input + causal correction, gan_networks.h)
-  std::string generator = "residual";
   // Collapse guard: every N steps (0: never) G_SR translates a fixed probe batch of synthetic
   // RIRs; training stops with an Error when the outputs are silent or nearly equal to each other
   // while their inputs are not.
   long long collapse_check_every = 100;
-  // "float32" (the original) or "bfloat16": forward passes under CPU autocast (bfloat16
-  // convolutions, float32 weights, gradients, optimiser and losses); 1.46x faster width-16 steps (bench/RESULTS.md) on CPUs
-  // with AVX512-BF16/AMX.
-  std::string precision = "float32";
   double progress_interval_s = 10.0;
+
+  void Register(OptionsItf* opts);  // gan_options.cc (model's options nested); the model dir is positional
 };
 
 struct GanTrainResult {
@@ -78,6 +67,8 @@ struct GanTranslateOptions {
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
   // (tests/gan/gan_networks_test.cc). Slower than float32 on CPUs without bfloat16 arithmetic.
   std::string precision = "float32";
+
+  void Register(OptionsItf* opts);  // gan_options.cc; input list and out dir are positional
 };
 
 struct GanTranslateResult {

@@ -161,6 +161,25 @@ std::vector<double> early_log_envelope(const tsrir::Signal& rir, long start_samp
   return env;
 }
 
+std::vector<double> low_band_addition(const tsrir::Signal& input, const tsrir::Signal& output, long start_sample) {
+  auto peak = [](const tsrir::Signal& x) {
+    float p = 0;
+    for (float v : x.samples) p = std::max(p, std::abs(v));
+    return p > 0 ? double(p) : 1.0;
+  };
+  const double in_peak = peak(input), out_peak = peak(output);
+  tsrir::Signal added = input;
+  added.samples.assign(input.samples.size(), 0.0f);
+  const size_t n = std::min(input.samples.size(), output.samples.size());
+  for (size_t k = 0; k < n; ++k) {
+    added.samples[k] = float(output.samples[k] / out_peak - input.samples[k] / in_peak);
+  }
+  const std::vector<double> low = filtered(added, 200.0, false);
+  const long begin = std::max(0L, start_sample);
+  const long end = std::min(long(low.size()), begin + long(std::lround(0.2 * input.sample_rate_hz)));
+  return begin < end ? std::vector<double>(low.begin() + begin, low.begin() + end) : std::vector<double>();
+}
+
 double pearson(const std::vector<double>& a, const std::vector<double>& b) {
   const size_t n = std::min(a.size(), b.size());
   if (n < 2) return kNaN;
@@ -188,6 +207,7 @@ std::string FidelityReport::summary() const {
      << "; DRR spearman " << drr_spearman << ", median error " << drr_median_error_db << " dB"
      << "; onset within 1 ms " << onset_fraction_within << " (max error " << onset_max_error_ms << " ms)"
      << "; early envelope corr. own " << own_correlation << ", other " << other_correlation
+     << "; added <200 Hz corr. across RIRs " << added_correlation
      << "; " << (passed() ? "PASS" : "FAIL");
   for (const auto& f : failures) os << " [" << f << "]";
   return os.str();
@@ -201,7 +221,7 @@ FidelityReport evaluate_fidelity(const std::vector<tsrir::Signal>& inputs,
   r.count = int(n);
   std::vector<double> in_effect, out_effect, real_effect, in_t60, out_t60, t60_error, in_drr, out_drr, drr_error;
   int onset_ok = 0;
-  std::vector<std::vector<double>> in_env(n), out_env(n);
+  std::vector<std::vector<double>> in_env(n), out_env(n), added(n);
   for (size_t i = 0; i < n; ++i) {
     const RirFidelityMeasures a = measure_fidelity_rir(inputs[i]), b = measure_fidelity_rir(outputs[i]);
     in_effect.push_back(a.effect_db);
@@ -227,6 +247,7 @@ FidelityReport evaluate_fidelity(const std::vector<tsrir::Signal>& inputs,
     const long start = long(std::lround(a.onset_ms * inputs[i].sample_rate_hz / 1000.0));
     in_env[i] = early_log_envelope(inputs[i], start);
     out_env[i] = early_log_envelope(outputs[i], start);
+    added[i] = low_band_addition(inputs[i], outputs[i], start);
   }
   for (const auto& rir : real) real_effect.push_back(measure_fidelity_rir(rir).effect_db);
   r.synthetic_effect_db = mean(in_effect), r.translated_effect_db = mean(out_effect);
@@ -245,6 +266,13 @@ FidelityReport evaluate_fidelity(const std::vector<tsrir::Signal>& inputs,
     }
   }
   r.own_correlation = mean(own), r.other_correlation = mean(other);
+  std::vector<double> pairs;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      pairs.push_back(pearson(added[i], added[j]));  // over the shorter of the two
+    }
+  }
+  r.added_correlation = mean(pairs);
 
   auto fail = [&](bool bad, const std::string& what) {
     if (bad) r.failures.push_back(what);
@@ -257,6 +285,8 @@ FidelityReport evaluate_fidelity(const std::vector<tsrir::Signal>& inputs,
   fail(!(r.onset_fraction_within >= bounds.min_onset_fraction), "fewer than 90% of onsets within 1 ms");
   fail(!(r.own_correlation - r.other_correlation >= bounds.min_own_minus_other),
        "own-input minus other-input envelope correlation < 0.3");
+  fail(!(r.added_correlation <= bounds.max_added_correlation),
+       "below-200 Hz additions correlate > 0.5 across RIRs (one template)");
   return r;
 }
 

@@ -45,14 +45,6 @@ std::vector<tsrir::Signal> signals_of(const std::vector<FidelityRir>& rirs) {
 
 }  // namespace
 
-uint64_t fidelity_seed_of_the_day() {
-  if (const char* s = std::getenv("TSRIR_GAN_FIDELITY_SEED")) return std::strtoull(s, nullptr, 10);
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  return uint64_t((utc.tm_year + 1900) * 10000 + (utc.tm_mon + 1) * 100 + utc.tm_mday);
-}
-
 FidelitySuiteResult run_fidelity_suite(const FidelitySuiteOptions& o) {
   FidelitySuiteResult result;
   const std::string d = o.work_dir;

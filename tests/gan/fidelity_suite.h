@@ -31,8 +31,4 @@ struct FidelitySuiteResult {
 
 FidelitySuiteResult run_fidelity_suite(const FidelitySuiteOptions& options);
 
-// The seed CI uses: the UTC date as YYYYMMDD (a new seed every day, so no seed is tuned), unless
-// TSRIR_GAN_FIDELITY_SEED is set.
-uint64_t fidelity_seed_of_the_day();
-
 }  // namespace tsrir_test

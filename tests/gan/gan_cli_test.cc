@@ -98,7 +98,7 @@ TEST_F(GanCli, HelpAndUsageErrors) {
   // Both spellings of an option.
   RunResult r = run(train("--steps 1 --device=cpu", "m"), dir_);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(run(train("--steps=1 --device=tpu", "m2"), dir_).err.find("cpu or cuda"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --device=tpu", "m2"), dir_).err.find("cpu | cuda"), std::string::npos);
 }
 
 // The collapse guard: the original's generator with Glorot kernels at width 2 outputs ~tanh(0)
@@ -329,8 +329,8 @@ TEST_F(GanCli, LightDecoderAndBfloat16) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("--warmup-steps=100"), std::string::npos) << r.err;
   EXPECT_NE(run(train("--steps=1 --warmup-steps=-1", "m3"), dir_).status, 0);
-  EXPECT_NE(run(train("--steps=1 --decoder=heavy", "m2"), dir_).err.find("original or light"), std::string::npos);
-  EXPECT_NE(run(train("--steps=1 --precision=half", "m2"), dir_).err.find("float32 or bfloat16"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --decoder=heavy", "m2"), dir_).err.find("light | original"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --precision=half", "m2"), dir_).err.find("float32 | bfloat16"), std::string::npos);
 
   const std::string model = " --model=" + dir_ + "/m --keep-length=input ";
   ASSERT_EQ(run(kBin + "/gas-to-real" + model + synthetic_ + " " + dir_ + "/f32", dir_).status, 0);
