@@ -33,6 +33,19 @@ std::string snr_reference_name(SnrReference reference) {
   return reference == SnrReference::kEarlyReverb ? "early" : "full";
 }
 
+void ReverbOptions::Register(OptionsItf* opts) {
+  opts->Register("shift-output", &shift_output,
+                 "Advance the output by the RIR's peak index (direct-path delay) and keep the input's length; "
+                 "false: the whole reverberant signal (input length + RIR length - 1)");
+  opts->Register("normalize-output", &normalize_output,
+                 "Scale the output to the power of the input after reverberation and noise");
+  opts->RegisterEnum("snr-reference", &snr_reference,
+                     {{"early", SnrReference::kEarlyReverb}, {"full", SnrReference::kFullReverb}},
+                     "tsrir extension: what the SNRs are relative to: early = Kaldi's early-reverberation "
+                     "energy (speech convolved with the RIR from 1 ms before to 50 ms after its peak), full = "
+                     "the whole reverberant speech");
+}
+
 void early_reverb_window(size_t peak, size_t length, double sample_rate_hz, size_t* begin, size_t* end) {
   // Kaldi evaluates these in float and truncates toward zero; at 16 kHz that is exactly
   // 16 samples before and 800 after the peak, at 44.1 kHz 45 before.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dsp/convolve.h"
+#include "util/options.h"
 
 namespace tsrir {
 
@@ -67,14 +68,18 @@ struct AdditiveSignal {
 struct ReverbOptions {
   bool shift_output = true;      // drop the direct-path delay (shift by the RIR's peak index)
   bool normalize_output = true;  // rescale to the input's power
-  double volume = 0.0;           // > 0: fixed gain instead of normalisation
-  double duration_s = 0.0;       // > 0: output length int(fs * duration), tiled if longer
+  float volume = 0.0f;           // > 0: fixed gain instead of normalisation (Kaldi's BaseFloat)
+  float duration_s = 0.0f;       // > 0: output length int(fs * duration), tiled if longer (BaseFloat)
   SnrReference snr_reference = SnrReference::kEarlyReverb;
   // Extension: each additive signal is tiled from its offset to the end of the reverberant
   // signal (paper §4.1: noise started at a random position and repeated in a loop), and its
   // power is measured over exactly the samples that are added. Without it (Kaldi), a signal is
   // added once and its power is measured over its own length.
   bool loop_additive_signals = false;
+
+  // The options wav-reverberate and reverberate-data share, under Kaldi's names: --shift-output,
+  // --normalize-output, and tsrir's --snr-reference. wav-reverberate registers the others itself.
+  void Register(OptionsItf* opts);
 };
 
 // Parts kept separately for verification: both are in the unshifted, full-length domain

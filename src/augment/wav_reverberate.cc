@@ -52,6 +52,46 @@ void write_output(const std::string& wx, const std::vector<std::vector<float>>& 
 
 }  // namespace
 
+void WavReverberateOptions::Register(OptionsItf* opts) {
+  opts->Register("multi-channel-output", &multi_channel_output,
+                 "One output channel per RIR channel (additive signals must have as many channels)");
+  opts->Register("input-wave-channel", &input_wave_channel, "Channel of the input used to make the output");
+  opts->Register("rir-channel", &rir_channel, "Channel of the RIR, used when --multi-channel-output=false");
+  opts->Register("noise-channel", &noise_channel,
+                 "Channel of the additive signals, used when --multi-channel-output=false");
+  opts->Register("impulse-response", &impulse_response,
+                 "rxfilename of the room impulse response (file, 'command |' or -); empty = no reverberation");
+  opts->Register("additive-signals", &additive_signals, "Comma-separated list of additive signals (rxfilenames)");
+  opts->Register("snrs", &snrs, "Comma-separated SNRs in dB, one per additive signal");
+  opts->Register("start-times", &start_times,
+                 "Comma-separated start times in seconds, one per additive signal, into the reverberant input; "
+                 "a start beyond its end adds nothing");
+  reverb.Register(opts);
+  opts->Register("volume", &reverb.volume, "If > 0, a gain applied instead of --normalize-output");
+  opts->Register("duration", &reverb.duration_s,
+                 "If > 0, output duration in seconds: trimmed if shorter, tiled (repeated) if longer");
+  opts->Register("additive-offsets", &additive_offsets,
+                 "tsrir extension: comma-separated positions (s) in each additive signal where reading starts "
+                 "(rounded to the nearest sample); empty = 0 for all");
+  opts->Register("loop-additive-signals", &reverb.loop_additive_signals,
+                 "tsrir extension: tile each additive signal from its offset to the end of the reverberant signal; "
+                 "its power for the SNR is then measured over exactly the samples added");
+  opts->Register("additive-loops", &additive_loops,
+                 "tsrir extension: comma-separated true/false, one per additive signal: loop that signal as "
+                 "--loop-additive-signals does for all");
+  opts->Register("additive-impulse-responses", &additive_impulse_responses,
+                 "tsrir extension: comma-separated RIR rxfilenames, one field per additive signal (empty = none): "
+                 "that signal is first reverberated as Kaldi's nested `wav-reverberate --impulse-response=<rir> "
+                 "<signal> -` would, in this process");
+  opts->Register("additive-durations", &additive_durations,
+                 "tsrir extension: comma-separated durations (s), one per additive signal (0 = as is): that signal "
+                 "is first repeated or cut to it as Kaldi's nested `wav-reverberate --duration=<s>` would");
+  opts->Register("max-in-memory-duration", &max_in_memory_s,
+                 "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
+                 "with memory independent of their length (same output; a piped input is first copied to a "
+                 "temporary file, as is the unscaled output: next to a file output, else in $TMPDIR); 0 = always");
+}
+
 std::vector<std::vector<float>> read_channels_at_rate(const std::string& rx, double sample_rate_hz,
                                                       const std::string& context) {
   AudioInfo info;
@@ -82,7 +122,7 @@ std::vector<OutputChannelSetup> setup_output_channels(
     double sample_rate_hz, const std::vector<std::vector<float>>& rir_channels,
     const std::vector<std::vector<std::vector<float>>>& additive_channels, const std::vector<double>& snrs_db,
     const std::vector<double>& start_times_s, const std::vector<double>& offsets_s,
-    const WavReverberateConfig& config) {
+    const WavReverberateOptions& config) {
   const bool have_rir = !rir_channels.empty();
   const size_t num_out = (config.multi_channel_output && have_rir) ? rir_channels.size() : 1;
   if (config.multi_channel_output && config.rir_channel != 0)
@@ -131,7 +171,7 @@ std::vector<std::vector<float>> wav_reverberate_channels(
     const std::vector<std::vector<float>>& rir_channels,
     const std::vector<std::vector<std::vector<float>>>& additive_channels,
     const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
-    const std::vector<double>& offsets_s, const WavReverberateConfig& config) {
+    const std::vector<double>& offsets_s, const WavReverberateOptions& config) {
   const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
   const std::vector<OutputChannelSetup> setups = setup_output_channels(
       sample_rate_hz, rir_channels, additive_channels, snrs_db, start_times_s, offsets_s, config);
@@ -141,7 +181,7 @@ std::vector<std::vector<float>> wav_reverberate_channels(
   return outputs;
 }
 
-long long run_wav_reverberate(const WavReverberateConfig& config, const std::string& input_rx,
+long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
                               const std::string& output_wx) {
   const std::vector<std::string> additive_rx = split_comma_list(config.additive_signals);
   const std::vector<double> snrs = parse_number_list(config.snrs, "snrs");

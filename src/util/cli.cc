@@ -1,13 +1,11 @@
 #include "util/cli.h"
 
 #include <boost/program_options.hpp>
-#include <csignal>
 #include <cstdlib>
 #include <iostream>
 #include <set>
 #include <sstream>
 
-#include "util/cleanup.h"
 #include "util/config_file.h"
 #include "util/error.h"
 
@@ -15,12 +13,6 @@ namespace po = boost::program_options;
 
 namespace tsrir {
 namespace {
-
-extern "C" void on_terminating_signal(int sig) {
-  remove_registered_temps_on_signal();
-  std::signal(sig, SIG_DFL);
-  std::raise(sig);
-}
 
 const char kPositional[] = "positional-arguments__";
 
@@ -192,21 +184,6 @@ std::vector<std::string> CommandLine::parse(int argc, const char* const* argv, i
                 ")\n" + hint());
   }
   return positional;
-}
-
-int run_program(const std::string& program, const std::function<int()>& body) {
-  set_log_program_name(program);
-  std::signal(SIGINT, on_terminating_signal);
-  std::signal(SIGTERM, on_terminating_signal);
-  std::signal(SIGHUP, on_terminating_signal);
-  try {
-    return body();
-  } catch (const Error& e) {
-    std::cerr << program << ": ERROR: " << e.what() << std::endl;
-  } catch (const std::exception& e) {
-    std::cerr << program << ": ERROR: " << e.what() << std::endl;
-  }
-  return 1;
 }
 
 }  // namespace tsrir

@@ -16,6 +16,7 @@
 
 #include "util/log.h"
 #include "util/options.h"
+#include "util/program.h"
 
 namespace tsrir {
 
@@ -59,10 +60,5 @@ class CommandLine : public OptionsItf {
   std::map<std::string, size_t> index_;          // option name or alias -> specs_ index
   std::vector<std::pair<std::string, std::string>> aliases_;  // (alias, name), in registration order
 };
-
-// Runs a program body: Error and std::exception become "<program>: ERROR: <message>" on stderr
-// and exit status 1. Also names the program in log lines and installs the SIGINT/SIGTERM handler
-// that removes temporary outputs.
-int run_program(const std::string& program, const std::function<int()>& body);
 
 }  // namespace tsrir
