@@ -18,7 +18,9 @@ namespace tsrir {
 // process: `noise` convolved with `rir` (null = none) with wav-reverberate's defaults (shifted,
 // normalised), repeated or cut to `duration_s` (0 = as is), rounded to 16 bits as the pipe between
 // the two programs does. Used by wav-reverberate's --additive-impulse-responses/--additive-durations
-// and by reverberate-data's materialised path, so both equal the nested pipe.
+// and by reverberate-data's materialised path, so both equal the nested pipe. Without an RIR the
+// result depends only on the first int(fs * duration) samples of `noise` (when it is longer): a
+// caller may pass just those.
 std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
                                        double duration_s);
 

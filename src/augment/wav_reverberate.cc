@@ -4,11 +4,13 @@
 #include <memory>
 
 #include "augment/noise_signal.h"
+#include "augment/reverb_steps.h"
 #include "augment/reverberate_stream.h"
 #include "augment/temp_file.h"
 #include "augment/wav_sink.h"
 #include "io/audio_io.h"
-#include "util/cli.h"
+#include "io/rxfile.h"
+#include "util/log.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -232,7 +234,20 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
     // As the nested program: the noise at its own rate (its first channel), the RIR at that rate,
     // 16-bit result, then resampled to the speech's rate as the outer program would.
     AudioInfo info;
-    std::vector<std::vector<float>> noise = read_audio_channels(additive_rx[i], &info, "--additive-signals");
+    size_t needed = static_cast<size_t>(-1);
+    if (rir_rx.empty()) {
+      // Only the first int(fs * duration) samples matter then (noise_signal.h): a 30 s noise file
+      // cut to a 10 s utterance is read that far. An unreadable file is left to the read below,
+      // which reports it.
+      const std::string t = trim(additive_rx[i]);
+      try {
+        if (t != "-" && !is_pipe_rxfilename(t))
+          needed = kaldi_duration_samples(probe_audio(t).sample_rate_hz, static_cast<float>(duration));
+      } catch (const Error&) {
+      }
+    }
+    std::vector<std::vector<float>> noise =
+        read_audio_channels_prefix(additive_rx[i], needed, &info, "--additive-signals");
     std::unique_ptr<PreparedRir> rir;
     if (!rir_rx.empty())
       rir = std::make_unique<PreparedRir>(

@@ -7,15 +7,14 @@
 #include <memory>
 #include <mutex>
 
+#include "dsp/fft_plan_pair.h"
 #include "util/error.h"
 
 namespace tsrir {
-namespace {
 
-struct PlanPair {
-  fftwf_plan forward;
-  fftwf_plan inverse;
-};
+extern const char* const kFftwWisdom;  // fftw_wisdom_data.cc, generated
+
+namespace {
 
 // FFTW's planner is not thread-safe; execution of an existing plan on new arrays is.
 std::mutex g_plan_mutex;
@@ -26,16 +25,14 @@ std::map<size_t, PlanPair>& plan_cache() {
 
 PlanPair get_plans(size_t n) {
   std::lock_guard<std::mutex> lock(g_plan_mutex);
+  // Before the first plan: the build machine's wisdom (dsp/wisdom/fftw_wisdom_gen.cc). FFTW takes
+  // all of it or, if it does not fit this FFTW or this CPU, none (plans are then searched for).
+  static const bool wisdom_imported = kFftwWisdom[0] != '\0' && fftwf_import_wisdom_from_string(kFftwWisdom) != 0;
+  (void)wisdom_imported;
   auto& cache = plan_cache();
   auto it = cache.find(n);
   if (it != cache.end()) return it->second;
-  float* in = fftwf_alloc_real(n);
-  fftwf_complex* out = fftwf_alloc_complex(n / 2 + 1);
-  PlanPair p;
-  p.forward = fftwf_plan_dft_r2c_1d(static_cast<int>(n), in, out, FFTW_ESTIMATE);
-  p.inverse = fftwf_plan_dft_c2r_1d(static_cast<int>(n), out, in, FFTW_ESTIMATE);
-  fftwf_free(in);
-  fftwf_free(out);
+  PlanPair p = make_plan_pair(n);
   if (!p.forward || !p.inverse) throw Error("FFTW: cannot plan a transform of size " + std::to_string(n));
   cache.emplace(n, p);
   return p;

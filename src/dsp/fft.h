@@ -1,6 +1,7 @@
 // FFTW3 single-precision real FFTs. Plans are created once per size (FFTW_ESTIMATE: planning a
 // 2^20 transform with FFTW_MEASURE costs ~10 s) under a global lock, then shared by all threads
-// through fftwf_execute_dft_r2c/c2r on per-call buffers.
+// through fftwf_execute_dft_r2c/c2r on per-call buffers. Power-of-two plans are looked up in wisdom
+// made at build time (dsp/wisdom/fftw_wisdom_gen.cc): the same plans, without the search.
 #pragma once
 #include <complex>
 #include <cstddef>
