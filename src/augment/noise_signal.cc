@@ -9,7 +9,7 @@
 namespace tsrir {
 
 std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
-                                       double duration_s) {
+                                       double duration_s, bool noise_is_int16) {
   ReverbOptions nested;  // wav-reverberate's defaults: shifted, normalised
   nested.duration_s = static_cast<float>(duration_s);
   std::vector<float> signal;
@@ -25,6 +25,7 @@ std::vector<float> nested_noise_signal(const std::vector<float>& noise, double s
       std::copy(noise.begin(), noise.begin() + static_cast<long>(run), signal.begin() + static_cast<long>(done));
       done += run;
     }
+    if (noise_is_int16) return signal;
   } else {
     signal = reverberate_channel(noise, sample_rate_hz, rir, {}, nested);
   }

@@ -21,8 +21,10 @@ namespace tsrir {
 // and by reverberate-data's materialised path, so both equal the nested pipe. Without an RIR the
 // result depends only on the first int(fs * duration) samples of `noise` (when it is longer): a
 // caller may pass just those.
+// `noise_is_int16`: its samples are 16-bit PCM values, which the pipe's rounding to 16 bits leaves
+// as they are when there is no RIR (the rounding is then skipped).
 std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
-                                       double duration_s);
+                                       double duration_s, bool noise_is_int16 = false);
 
 AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr<const std::vector<float>> noise,
                                     const PreparedRir* rir, double sample_rate_hz);

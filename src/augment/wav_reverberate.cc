@@ -253,7 +253,8 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
       rir = std::make_unique<PreparedRir>(
           read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
           info.sample_rate_hz);
-    std::vector<float> signal = nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration);
+    std::vector<float> signal =
+        nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration, info.int16_samples);
     if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
     additive.push_back({std::move(signal)});
   }

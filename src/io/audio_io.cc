@@ -132,6 +132,7 @@ void fill_info(const SF_INFO& sf, AudioInfo* info) {
   info->channels = sf.channels;
   info->frames = sf.frames;
   info->format = format_name(sf.format);
+  info->int16_samples = (sf.format & SF_FORMAT_SUBMASK) == SF_FORMAT_PCM_16;
 }
 
 Signal select_channel(std::vector<std::vector<float>>&& channels, double rate, const AudioReadOptions& o,
@@ -187,6 +188,7 @@ void fill_info(const PlainWavLayout& layout, AudioInfo* info) {
   info->channels = layout.channels;
   info->frames = static_cast<long long>(layout.frames);
   info->format = layout.format_name();
+  info->int16_samples = layout.bits == 16 && !layout.is_float;
 }
 
 }  // namespace

@@ -23,7 +23,8 @@ struct AudioInfo {
   double sample_rate_hz = 0.0;
   int channels = 0;
   long long frames = 0;
-  std::string format;            // e.g. "WAV PCM_16"
+  std::string format;            // e.g. "WAV (Microsoft) Signed 16 bit PCM"
+  bool int16_samples = false;    // 16-bit PCM: every sample is exactly s / 32768 for an integer s
 };
 
 // Reads an rxfilename (path, "-", or "cmd |"). Errors (each names the file and context): missing

@@ -107,6 +107,25 @@ bool parse_plain_wav(const char* bytes, size_t size, PlainWavLayout* layout) {
   return false;
 }
 
+namespace {
+
+// One loop per encoding (the format test hoisted out of the per-sample loop): `sample(p)` converts
+// the `width` bytes at p.
+template <typename Convert>
+void decode_frames(const char* p, size_t width, size_t count, std::vector<std::vector<float>>* channels,
+                   Convert sample) {
+  const size_t ch = channels->size();
+  if (ch == 1) {
+    float* out = (*channels)[0].data();
+    for (size_t n = 0; n < count; ++n, p += width) out[n] = sample(p);
+    return;
+  }
+  for (size_t n = 0; n < count; ++n)
+    for (size_t c = 0; c < ch; ++c, p += width) (*channels)[c][n] = sample(p);
+}
+
+}  // namespace
+
 void decode_plain_wav(const char* bytes, const PlainWavLayout& layout, size_t first, size_t count,
                       const std::string& name, std::vector<std::vector<float>>* channels) {
   const size_t ch = static_cast<size_t>(layout.channels);
@@ -118,27 +137,34 @@ void decode_plain_wav(const char* bytes, const PlainWavLayout& layout, size_t fi
   // and 24 bits (libsndfile reads 24-bit samples shifted into the top of an int, as here).
   constexpr float k16 = 1.0f / 32768.0f;
   constexpr float k32 = 1.0f / 2147483648.0f;
-  for (size_t n = 0; n < count; ++n) {
-    for (size_t c = 0; c < ch; ++c, p += width) {
+  if (layout.is_float) {
+    decode_frames(p, width, count, channels, [](const char* q) {
       float v;
-      if (layout.is_float) {
-        std::memcpy(&v, p, 4);
-        if (!std::isfinite(v)) {
+      std::memcpy(&v, q, 4);
+      return v;
+    });
+    bool finite = true;
+    for (const auto& v : *channels)
+      for (float x : v) finite &= std::isfinite(x);
+    // Report the first bad sample in file order, as the libsndfile path does.
+    for (size_t n = 0; !finite && n < count; ++n)
+      for (size_t c = 0; c < ch; ++c)
+        if (!std::isfinite((*channels)[c][n]))
           throw Error(name + ": NaN or Inf sample at frame " + std::to_string(first + n) + " channel " +
                       std::to_string(c));
-        }
-      } else if (layout.bits == 16) {
-        v = static_cast<float>(static_cast<int16_t>(u16(p))) * k16;
-      } else if (layout.bits == 24) {
-        const auto* b = reinterpret_cast<const unsigned char*>(p);
-        const uint32_t shifted = (static_cast<uint32_t>(b[0]) << 8) | (static_cast<uint32_t>(b[1]) << 16) |
-                                 (static_cast<uint32_t>(b[2]) << 24);
-        v = static_cast<float>(static_cast<int32_t>(shifted)) * k32;
-      } else {
-        v = static_cast<float>(static_cast<int32_t>(u32(p))) * k32;
-      }
-      (*channels)[c][n] = v;
-    }
+  } else if (layout.bits == 16) {
+    decode_frames(p, width, count, channels,
+                  [k16](const char* q) { return static_cast<float>(static_cast<int16_t>(u16(q))) * k16; });
+  } else if (layout.bits == 24) {
+    decode_frames(p, width, count, channels, [k32](const char* q) {
+      const auto* b = reinterpret_cast<const unsigned char*>(q);
+      const uint32_t shifted = (static_cast<uint32_t>(b[0]) << 8) | (static_cast<uint32_t>(b[1]) << 16) |
+                               (static_cast<uint32_t>(b[2]) << 24);
+      return static_cast<float>(static_cast<int32_t>(shifted)) * k32;
+    });
+  } else {
+    decode_frames(p, width, count, channels,
+                  [k32](const char* q) { return static_cast<float>(static_cast<int32_t>(u32(q))) * k32; });
   }
 }
 
