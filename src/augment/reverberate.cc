@@ -67,7 +67,10 @@ PreparedRir::PreparedRir(std::vector<float> rir, double sample_rate_hz)
               padded_early_part(rir_, early_begin_, early_end_))) {}
 
 double PreparedRir::early_reverb_energy(const std::vector<float>& x) const {
-  return early_energy_from_padded_power(mean_power(early_.convolve(x)), x.size(), *this);
+  // Summed block by block as it is produced (PowerSum gives the same sum however it is cut).
+  PowerSum sum;
+  early_.convolve_blocks(x, [&sum](size_t, const float* values, size_t count) { sum.add(values, count); });
+  return early_energy_from_padded_power(sum.mean(), x.size(), *this);
 }
 
 std::vector<float> reverberate_channel(const std::vector<float>& input, double sample_rate_hz,

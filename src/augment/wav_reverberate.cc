@@ -119,10 +119,11 @@ struct OutputChannelSetup {
 };
 
 // Kaldi's channel rules (--multi-channel-output, --rir-channel, --noise-channel), shared by the
-// in-memory and the streaming path.
+// in-memory and the streaming path. The additive channels used are moved into the setups (each
+// output channel takes its own channel of each signal).
 std::vector<OutputChannelSetup> setup_output_channels(
     double sample_rate_hz, const std::vector<std::vector<float>>& rir_channels,
-    const std::vector<std::vector<std::vector<float>>>& additive_channels, const std::vector<double>& snrs_db,
+    std::vector<std::vector<std::vector<float>>> additive_channels, const std::vector<double>& snrs_db,
     const std::vector<double>& start_times_s, const std::vector<double>& offsets_s,
     const WavReverberateOptions& config) {
   const bool have_rir = !rir_channels.empty();
@@ -155,8 +156,9 @@ std::vector<OutputChannelSetup> setup_output_channels(
     additive.resize(additive_channels.size());
     for (size_t i = 0; i < additive_channels.size(); ++i) {
       const int noise_index = (config.multi_channel_output && have_rir) ? static_cast<int>(c) : config.noise_channel;
+      channel_of(additive_channels[i], noise_index, "additive signal " + std::to_string(i + 1));  // checks
       additive[i].samples = std::make_shared<const std::vector<float>>(
-          channel_of(additive_channels[i], noise_index, "additive signal " + std::to_string(i + 1)));
+          std::move(additive_channels[i][static_cast<size_t>(noise_index)]));
       additive[i].snr_db = snrs_db.at(i);
       additive[i].start_time_s = start_times_s.at(i);
       additive[i].offset_s = offsets_s.empty() ? 0.0 : offsets_s.at(i);
@@ -164,6 +166,20 @@ std::vector<OutputChannelSetup> setup_output_channels(
     }
   }
   return setups;
+}
+
+std::vector<std::vector<float>> reverberate_in_memory(
+    const std::vector<std::vector<float>>& input_channels, double sample_rate_hz,
+    const std::vector<std::vector<float>>& rir_channels, std::vector<std::vector<std::vector<float>>> additive_channels,
+    const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
+    const std::vector<double>& offsets_s, const WavReverberateOptions& config) {
+  const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
+  const std::vector<OutputChannelSetup> setups = setup_output_channels(
+      sample_rate_hz, rir_channels, std::move(additive_channels), snrs_db, start_times_s, offsets_s, config);
+  std::vector<std::vector<float>> outputs(setups.size());
+  for (size_t c = 0; c < setups.size(); ++c)
+    outputs[c] = reverberate_channel(input, sample_rate_hz, setups[c].rir.get(), setups[c].additive, config.reverb);
+  return outputs;
 }
 
 }  // namespace
@@ -174,13 +190,8 @@ std::vector<std::vector<float>> wav_reverberate_channels(
     const std::vector<std::vector<std::vector<float>>>& additive_channels,
     const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
     const std::vector<double>& offsets_s, const WavReverberateOptions& config) {
-  const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
-  const std::vector<OutputChannelSetup> setups = setup_output_channels(
-      sample_rate_hz, rir_channels, additive_channels, snrs_db, start_times_s, offsets_s, config);
-  std::vector<std::vector<float>> outputs(setups.size());
-  for (size_t c = 0; c < setups.size(); ++c)
-    outputs[c] = reverberate_channel(input, sample_rate_hz, setups[c].rir.get(), setups[c].additive, config.reverb);
-  return outputs;
+  return reverberate_in_memory(input_channels, sample_rate_hz, rir_channels, additive_channels, snrs_db,
+                               start_times_s, offsets_s, config);
 }
 
 long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
@@ -262,13 +273,13 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
   size_t total = 0;
   if (!input.on_disk()) {
     std::vector<std::vector<float>> output =
-        wav_reverberate_channels(input.channels, fs, rir, additive, snrs, start_times, offsets, config);
+        reverberate_in_memory(input.channels, fs, rir, std::move(additive), snrs, start_times, offsets, config);
     input.channels.clear();
     write_output(output_wx, output, fs, &clipped);
     total = output.size() * output[0].size();
   } else {
     const std::vector<OutputChannelSetup> setups =
-        setup_output_channels(fs, rir, additive, snrs, start_times, offsets, config);
+        setup_output_channels(fs, rir, std::move(additive), snrs, start_times, offsets, config);
     std::vector<StreamChannel> channels(setups.size());
     for (size_t c = 0; c < setups.size(); ++c) {
       channels[c].rir = setups[c].rir.get();

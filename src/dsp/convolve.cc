@@ -51,11 +51,25 @@ Convolver::Convolver(const std::vector<float>& h) : m_(h.size()) {
 std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
   if (x.empty()) return {};
   if (!h_direct_.empty()) return direct_float(x, h_direct_);
+  std::vector<float> y(x.size() + m_ - 1);
+  convolve_blocks(x, [&y](size_t first, const float* values, size_t count) {
+    std::copy(values, values + count, y.begin() + static_cast<long>(first));
+  });
+  return y;
+}
+
+void Convolver::convolve_blocks(const std::vector<float>& x,
+                                const std::function<void(size_t, const float*, size_t)>& sink) const {
+  if (x.empty()) return;
+  if (!h_direct_.empty()) {
+    const std::vector<float> y = direct_float(x, h_direct_);
+    sink(0, y.data(), y.size());
+    return;
+  }
   const size_t out_len = x.size() + m_ - 1;
   const size_t n = fft_size_;
   RealFft fft(n);
   const float scale = 1.0f / static_cast<float>(n);
-  std::vector<float> y(out_len);
   std::vector<std::complex<float>> X(fft.num_bins());
   // The whole output fits one transform: no aliasing, one forward and one inverse FFT.
   if (out_len <= n) {
@@ -64,8 +78,9 @@ std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
     fft.forward(buf.data(), X.data());
     for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
     fft.inverse(X.data(), buf.data());
-    for (size_t i = 0; i < out_len; ++i) y[i] = buf[i] * scale;
-    return y;
+    for (size_t i = 0; i < out_len; ++i) buf[i] *= scale;
+    sink(0, buf.data(), out_len);
+    return;
   }
   // Overlap-save: input segment j covers x[j*B - (M-1) .. j*B + B - 1]; the first M-1 outputs of
   // each circular convolution are aliased and dropped.
@@ -83,9 +98,10 @@ std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
     for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
     fft.inverse(X.data(), res.data());
     const size_t count = std::min(block_, out_len - start);
-    for (size_t i = 0; i < count; ++i) y[start + i] = res[m_ - 1 + i] * scale;
+    float* out = res.data() + (m_ - 1);
+    for (size_t i = 0; i < count; ++i) out[i] *= scale;
+    sink(start, out, count);
   }
-  return y;
 }
 
 std::vector<float> fft_convolve(const std::vector<float>& x, const std::vector<float>& h) {

@@ -178,7 +178,11 @@ bool MappedFile::open(const std::string& path) {
   struct stat st;
   bool ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
   if (ok) {
-    void* p = mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+    // Small files (the usual utterance, RIR or noise) are mapped in one go rather than page by page
+    // on first touch; a long recording that is only probed stays unread.
+    constexpr off_t kPopulateLimit = 64 << 20;
+    const int flags = MAP_PRIVATE | (st.st_size <= kPopulateLimit ? MAP_POPULATE : 0);
+    void* p = mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, flags, fd, 0);
     ok = p != MAP_FAILED;
     if (ok) {
       data_ = static_cast<const char*>(p);

@@ -20,6 +20,15 @@ void put_u16(std::vector<char>& b, uint16_t v) {
   b.push_back(static_cast<char>(v >> 8));
 }
 
+// std::nearbyint (round half to even) wherever the result survives the clip to [-32768, 32767]:
+// adding and removing 1.5 * 2^23 leaves the float's integer part rounded half to even, exactly, for
+// |x| < 2^22; larger values are clipped anyway. Inline, where nearbyintf is a libm call per sample
+// without SSE4.1 (the build targets plain x86-64). (The sign of a zero is lost: it writes 0 anyway.)
+inline float round_to_int16_range(float x) {
+  constexpr float kMagic = 12582912.0f;  // 1.5 * 2^23
+  return std::fabs(x) < 4194304.0f ? (x + kMagic) - kMagic : x;
+}
+
 // One sample into its little-endian bytes at dst; returns false for NaN/Inf (nothing written).
 inline bool put_sample(char* dst, float v, bool is_float, long long* clipped) {
   if (!std::isfinite(v)) return false;
@@ -29,7 +38,7 @@ inline bool put_sample(char* dst, float v, bool is_float, long long* clipped) {
     for (int i = 0; i < 4; ++i) dst[i] = static_cast<char>((u >> (8 * i)) & 0xff);
   } else {
     // Round to nearest in float (exact for |v| < 2^8) and clip; Kaldi truncates toward zero.
-    float s = std::nearbyint(v * 32768.0f);
+    float s = round_to_int16_range(v * 32768.0f);
     if (s > 32767.0f || s < -32768.0f) {
       ++*clipped;
       s = std::clamp(s, -32768.0f, 32767.0f);
