@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
-# Reverberation through wav.scp pipes as Kaldi's feature extraction consumes them: one `bash -c`
-# per utterance, one (outer) wav-reverberate process per utterance plus a nested one per noise.
+# Reverberation through wav.scp pipes as Kaldi's feature extraction consumes them: one shell per
+# utterance running the pipe's command (Kaldi's Input opens "cmd |" with popen(), i.e. /bin/sh -c;
+# HARNESS=bash runs `bash -c` instead), one (outer) wav-reverberate process per utterance plus a
+# nested one per noise.
 # The same wav.scp (written once by reverberate-data with Kaldi's noise rules: an RIR of the room
 # and the room's isotropic noise extended to the utterance) is run with tsrir's wav-reverberate and,
 # when KALDI_ROOT is set, with Kaldi's (the pipes differ only in the program path). Prints wall and
 # CPU (user+sys of everything the pipes start) per row; Kaldi's row says "absent" without KALDI_ROOT.
 # The rows run interleaved, BLOCK (default 50) utterances at a time, so load that drifts during the
-# run weighs on all of them alike. A last row runs `bash -c /bin/true` per utterance: the floor any
-# program pays in this harness (the shell and one exec).
+# run weighs on all of them alike. A last row runs `/bin/true` the same way: the floor any program
+# pays in this harness (the shell and one exec).
 #
 # Usage: bench/augment/pipes_vs_kaldi.sh [<bin-dir>] [<num-utterances>]   (default build/bin, 1000)
 # Signals (synthetic, sox): "speech" = pink noise amplitude-modulated at 4 Hz, 10 s, 16-bit 16 kHz;
@@ -49,9 +51,11 @@ awk '{print $1, 10}' data/in/wav.scp > data/in/reco2dur
 # The rows run interleaved, a block of utterances at a time (tsrir, tsrir on Kaldi's form, Kaldi,
 # then the next block), so that a machine whose load drifts during the run weighs on every row alike.
 BLOCK=${BLOCK:-50}
+HARNESS=${HARNESS:-sh}
+case $HARNESS in sh | bash) ;; *) echo "HARNESS must be sh or bash" >&2; exit 2 ;; esac
 mkdir -p data/floor
 awk '{ print $1, "/bin/true |" }' data/tsrir_form/wav.scp > data/floor/wav.scp
-rows=("tsrir|$BIN|data/tsrir_form" "tsrir on Kaldi's form|$BIN|data/kaldi_form" "floor: bash -c /bin/true|$BIN|data/floor")
+rows=("tsrir|$BIN|data/tsrir_form" "tsrir on Kaldi's form|$BIN|data/kaldi_form" "floor: $HARNESS -c /bin/true|$BIN|data/floor")
 have_kaldi=0
 if [ -n "${KALDI_ROOT:-}" ] && [ -x "$KALDI_ROOT/src/featbin/wav-reverberate" ]; then
   rows+=("kaldi|$KALDI_ROOT/src/featbin|data/kaldi_form")
@@ -62,8 +66,8 @@ for ((first = 0; first < N; first += BLOCK)); do
   for r in "${!rows[@]}"; do
     IFS='|' read -r label dir data <<<"${rows[$r]}"
     sed -n "$((first + 1)),$((first + BLOCK))p" "$data/wav.scp" > block.scp
-    t=$( { /usr/bin/time -f "%e %U %S" env PATH="$dir:$PATH" SCP=block.scp bash -c '
-        while read -r id rest; do bash -c "${rest% |} > /dev/null" || exit 1; done < "$SCP"' ; } 2>&1 | tail -1)
+    t=$( { /usr/bin/time -f "%e %U %S" env PATH="$dir:$PATH" SCP=block.scp H="$HARNESS" bash -c '
+        while read -r id rest; do "$H" -c "${rest% |}" > /dev/null || exit 1; done < "$SCP"' ; } 2>&1 | tail -1)
     read -r w0 c0 n0 < "row_$r.txt"
     set -- $t
     echo "$w0 $c0 $n0" | awk -v w="$1" -v u="$2" -v s="$3" -v b="$(wc -l < block.scp)" \
@@ -81,7 +85,7 @@ if [ $have_kaldi = 1 ]; then
   read -r fw fc fn < row_2.txt
   awk -v tw="$tw" -v tc="$tc" -v kw="$kw" -v kc="$kc" -v fw="$fw" -v fc="$fc" \
     'BEGIN { printf "\ntsrir / Kaldi speed: %.2fx wall, %.2fx CPU", kw / tw, kc / tc;
-             printf " (above the bash -c floor: %.2fx wall, %.2fx CPU)\n", (kw - fw) / (tw - fw), (kc - fc) / (tc - fc) }'
+             printf " (above the floor: %.2fx wall, %.2fx CPU)\n", (kw - fw) / (tw - fw), (kc - fc) / (tc - fc) }'
 else
   echo "| kaldi                              | absent (KALDI_ROOT not set or no src/featbin/wav-reverberate) |"
 fi
