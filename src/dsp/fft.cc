@@ -12,7 +12,12 @@
 
 namespace tsrir {
 
-extern const char* const kFftwWisdom;  // fftw_wisdom_data.cc, generated
+// fftw_wisdom_data.cc, generated: wisdom per power-of-two size, ended by {0, nullptr}.
+struct FftwWisdomEntry {
+  size_t size;
+  const char* wisdom;
+};
+extern const FftwWisdomEntry kFftwWisdom[];
 
 namespace {
 
@@ -25,13 +30,13 @@ std::map<size_t, PlanPair>& plan_cache() {
 
 PlanPair get_plans(size_t n) {
   std::lock_guard<std::mutex> lock(g_plan_mutex);
-  // Before the first plan: the build machine's wisdom (dsp/wisdom/fftw_wisdom_gen.cc). FFTW takes
-  // all of it or, if it does not fit this FFTW or this CPU, none (plans are then searched for).
-  static const bool wisdom_imported = kFftwWisdom[0] != '\0' && fftwf_import_wisdom_from_string(kFftwWisdom) != 0;
-  (void)wisdom_imported;
   auto& cache = plan_cache();
   auto it = cache.find(n);
   if (it != cache.end()) return it->second;
+  // The build machine's wisdom for this size (dsp/wisdom/fftw_wisdom_gen.cc), if any: FFTW takes
+  // all of the entry or, if it does not fit this FFTW or this CPU, none (the plan is then searched).
+  for (const FftwWisdomEntry* w = kFftwWisdom; w->wisdom; ++w)
+    if (w->size == n) fftwf_import_wisdom_from_string(w->wisdom);
   PlanPair p = make_plan_pair(n);
   if (!p.forward || !p.inverse) throw Error("FFTW: cannot plan a transform of size " + std::to_string(n));
   cache.emplace(n, p);
