@@ -9,9 +9,10 @@
 namespace tsrir {
 
 std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
-                                       double duration_s, bool noise_is_int16) {
+                                       double duration_s, bool noise_is_int16, bool kaldi_compat) {
   ReverbOptions nested;  // wav-reverberate's defaults: shifted, normalised
   nested.duration_s = static_cast<float>(duration_s);
+  nested.kaldi_compat = kaldi_compat;
   std::vector<float> signal;
   if (!rir && !noise.empty()) {
     // Without an RIR the nested program's output is its input: normalisation scales by
@@ -28,6 +29,10 @@ std::vector<float> nested_noise_signal(const std::vector<float>& noise, double s
     if (noise_is_int16) return signal;
   } else {
     signal = reverberate_channel(noise, sample_rate_hz, rir, {}, nested);
+  }
+  if (kaldi_compat) {
+    kaldi_truncate_to_int16(&signal);
+    return signal;
   }
   // The pipe's 16-bit WAV: encode_wav()'s rounding and clipping, read back as s / 32768 (the
   // equality with encode + decode is checked by InProcessNestedNoiseEqualsTheNestedPipe).

@@ -135,6 +135,9 @@ OutputGeometry output_geometry(size_t input_length, const PreparedRir* rir, cons
   g.shift = (rir && options.shift_output) ? rir->peak_index() : 0;
   g.available = (rir && options.shift_output) ? input_length : y_length;
   g.length = options.duration_s > 0 ? kaldi_duration_samples(sample_rate_hz, options.duration_s) : g.available;
+  // Kaldi tiles the input-length head of y whenever the output is longer than the input: with
+  // --shift-output=false its N + M - 1 samples end with the first M - 1 again (kaldi_compat).
+  if (options.kaldi_compat) g.available = input_length;
   return g;
 }
 

@@ -88,6 +88,12 @@ void WavReverberateOptions::Register(OptionsItf* opts) {
   opts->Register("additive-durations", &additive_durations,
                  "tsrir extension: comma-separated durations (s), one per additive signal (0 = as is): that signal "
                  "is first repeated or cut to it as Kaldi's nested `wav-reverberate --duration=<s>` would");
+  opts->Register("kaldi-compat", &reverb.kaldi_compat,
+                 "tsrir extension: reproduce the output of Kaldi's wav-reverberate sample for sample (up to float "
+                 "rounding), its defects included: the error of its FFT block convolution (its DC and Nyquist "
+                 "bins are multiplied as one complex number), 16-bit output truncated instead of rounded, and with "
+                 "--shift-output=false the reverberant tail replaced by the first samples; the input is then "
+                 "always held in memory, as Kaldi does");
   opts->Register("max-in-memory-duration", &max_in_memory_s,
                  "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
                  "with memory independent of their length (same output; a piped input is first copied to a "
@@ -213,8 +219,10 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
     throw Error("--additive-offsets given without --additive-signals");
   }
 
+  // Kaldi's numerics are those of its whole-signal computation: no passes over the file.
+  const double max_in_memory_s = config.reverb.kaldi_compat ? 1e300 : config.max_in_memory_s;
   SpeechInput input =
-      open_speech_input(input_rx, config.max_in_memory_s, temp_base_for_output(output_wx, "input"), "input");
+      open_speech_input(input_rx, max_in_memory_s, temp_base_for_output(output_wx, "input"), "input");
   const double fs = input.on_disk() ? probe_audio(input.path).sample_rate_hz : input.info.sample_rate_hz;
 
   // Kaldi never checks the RIR's rate; applying a 48 kHz RIR to 16 kHz speech sample by sample
@@ -265,7 +273,8 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
           read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
           info.sample_rate_hz);
     std::vector<float> signal =
-        nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration, info.int16_samples);
+        nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration, info.int16_samples,
+                            config.reverb.kaldi_compat);
     if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
     additive.push_back({std::move(signal)});
   }
@@ -275,7 +284,12 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
     std::vector<std::vector<float>> output =
         reverberate_in_memory(input.channels, fs, rir, std::move(additive), snrs, start_times, offsets, config);
     input.channels.clear();
+    // Kaldi truncates toward zero (the writer would round): done first, the writer then keeps it.
+    long long truncated_clipped = 0;
+    if (config.reverb.kaldi_compat)
+      for (auto& channel : output) truncated_clipped += kaldi_truncate_to_int16(&channel);
     write_output(output_wx, output, fs, &clipped);
+    clipped += truncated_clipped;
     total = output.size() * output[0].size();
   } else {
     const std::vector<OutputChannelSetup> setups =
