@@ -8,7 +8,7 @@
 
 namespace tsrir {
 
-std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
+std::vector<float> nested_noise_signal(std::vector<float> noise, double sample_rate_hz, const PreparedRir* rir,
                                        double duration_s, bool noise_is_int16, bool kaldi_compat) {
   ReverbOptions nested;  // wav-reverberate's defaults: shifted, normalised
   nested.duration_s = static_cast<float>(duration_s);
@@ -20,11 +20,16 @@ std::vector<float> nested_noise_signal(const std::vector<float>& noise, double s
     // left, which needs no powers (and only the first samples when cut).
     const size_t length = nested.duration_s > 0 ? kaldi_duration_samples(sample_rate_hz, nested.duration_s)
                                                 : noise.size();
-    signal.resize(length);
-    for (size_t done = 0; done < length;) {
-      const size_t run = std::min(noise.size(), length - done);
-      std::copy(noise.begin(), noise.begin() + static_cast<long>(run), signal.begin() + static_cast<long>(done));
-      done += run;
+    if (length <= noise.size()) {
+      noise.resize(length);
+      signal = std::move(noise);
+    } else {
+      signal.resize(length);
+      for (size_t done = 0; done < length;) {
+        const size_t run = std::min(noise.size(), length - done);
+        std::copy(noise.begin(), noise.begin() + static_cast<long>(run), signal.begin() + static_cast<long>(done));
+        done += run;
+      }
     }
     if (noise_is_int16) return signal;
   } else {

@@ -24,7 +24,7 @@ namespace tsrir {
 // `noise_is_int16`: its samples are 16-bit PCM values, which the pipe's rounding to 16 bits leaves
 // as they are when there is no RIR (the rounding is then skipped). `kaldi_compat`: as Kaldi's own
 // nested program computes it (ReverbOptions::kaldi_compat), truncated to 16 bits.
-std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
+std::vector<float> nested_noise_signal(std::vector<float> noise, double sample_rate_hz, const PreparedRir* rir,
                                        double duration_s, bool noise_is_int16 = false, bool kaldi_compat = false);
 
 AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr<const std::vector<float>> noise,

@@ -40,6 +40,13 @@ void write_output(const std::string& wx, const std::vector<std::vector<float>>& 
   const size_t num_channels = channels.size();
   WavSink sink(wx, static_cast<int>(num_channels), frames, sample_rate_hz, SampleFormat::kInt16);
   constexpr size_t kBlockFrames = 16384;
+  if (num_channels == 1) {  // already "interleaved"
+    for (size_t start = 0; start < frames; start += kBlockFrames)
+      sink.write(channels[0].data() + start, std::min(kBlockFrames, frames - start));
+    sink.commit();
+    *clipped = sink.clipped_samples();
+    return;
+  }
   std::vector<float> block;
   for (size_t start = 0; start < frames; start += kBlockFrames) {
     const size_t n = std::min(kBlockFrames, frames - start);
@@ -273,7 +280,7 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
           read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
           info.sample_rate_hz);
     std::vector<float> signal =
-        nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration, info.int16_samples,
+        nested_noise_signal(std::move(noise.at(0)), info.sample_rate_hz, rir.get(), duration, info.int16_samples,
                             config.reverb.kaldi_compat);
     if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
     additive.push_back({std::move(signal)});

@@ -11,6 +11,18 @@ namespace {
 // Below this many multiply-adds, direct convolution beats the FFT's fixed costs.
 constexpr size_t kDirectWorkLimit = 4096 * 8;
 
+// X[k] *= H[k] for every bin, as (a c - b d, a d + b c): what std::complex's operator*= computes
+// for finite values, without its NaN-recovery branch (spectra of finite signals are finite).
+void multiply_spectra(std::complex<float>* X, const std::complex<float>* H, size_t bins) {
+  float* x = reinterpret_cast<float*>(X);
+  const float* h = reinterpret_cast<const float*>(H);
+  for (size_t k = 0; k < bins; ++k) {
+    const float a = x[2 * k], b = x[2 * k + 1], c = h[2 * k], d = h[2 * k + 1];
+    x[2 * k] = a * c - b * d;
+    x[2 * k + 1] = a * d + b * c;
+  }
+}
+
 std::vector<float> direct_float(const std::vector<float>& x, const std::vector<float>& h) {
   std::vector<float> y(x.size() + h.size() - 1, 0.0f);
   for (size_t k = 0; k < h.size(); ++k) {
@@ -76,8 +88,8 @@ void Convolver::convolve_blocks(const std::vector<float>& x,
     std::vector<float> buf(n, 0.0f);
     std::copy(x.begin(), x.end(), buf.begin());
     fft.forward(buf.data(), X.data());
-    for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
-    fft.inverse(X.data(), buf.data());
+    multiply_spectra(X.data(), h_spectrum_.data(), X.size());
+    fft.inverse_in_place(X.data(), buf.data());
     for (size_t i = 0; i < out_len; ++i) buf[i] *= scale;
     sink(0, buf.data(), out_len);
     return;
@@ -95,8 +107,8 @@ void Convolver::convolve_blocks(const std::vector<float>& x,
     std::fill(seg.begin(), seg.end(), 0.0f);
     if (hi > lo) std::copy(x.begin() + lo, x.begin() + hi, seg.begin() + (lo - seg_start));
     fft.forward(seg.data(), X.data());
-    for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
-    fft.inverse(X.data(), res.data());
+    multiply_spectra(X.data(), h_spectrum_.data(), X.size());
+    fft.inverse_in_place(X.data(), res.data());
     const size_t count = std::min(block_, out_len - start);
     float* out = res.data() + (m_ - 1);
     for (size_t i = 0; i < count; ++i) out[i] *= scale;

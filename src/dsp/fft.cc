@@ -124,6 +124,19 @@ void RealFft::inverse(const std::complex<float>* in, float* out) const {
   if (!direct_out) std::memcpy(out, dst, n_ * sizeof(float));
 }
 
+void RealFft::inverse_in_place(std::complex<float>* in, float* out) const {
+  auto* src = reinterpret_cast<fftwf_complex*>(in);
+  if (!simd_aligned(in)) {
+    inverse(in, out);
+    return;
+  }
+  float* dst = out;
+  const bool direct_out = simd_aligned(out);
+  if (!direct_out) dst = t_scratch.reals(n_);
+  fftwf_execute_dft_c2r(static_cast<fftwf_plan>(plan_inverse_), src, dst);
+  if (!direct_out) std::memcpy(out, dst, n_ * sizeof(float));
+}
+
 std::vector<std::complex<float>> rfft(const std::vector<float>& x, size_t n) {
   std::vector<float> padded(n, 0.0f);
   std::memcpy(padded.data(), x.data(), std::min(n, x.size()) * sizeof(float));

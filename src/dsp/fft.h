@@ -21,6 +21,9 @@ class RealFft {
   void forward(const float* in, std::complex<float>* out) const;
   // Unnormalised inverse: forward then inverse multiplies by n.
   void inverse(const std::complex<float>* in, float* out) const;
+  // The same values, using `in` as FFTW's work space (it is overwritten): one copy less per call,
+  // for callers that recompute the spectrum each time.
+  void inverse_in_place(std::complex<float>* in, float* out) const;
 
  private:
   size_t n_;
