@@ -7,7 +7,6 @@
 #include "augment/reverberate_data.h"
 #include "io/owned_output.h"
 #include "util/cli.h"
-#include "util/strings.h"
 
 namespace {
 
@@ -74,44 +73,21 @@ const char* kUsage =
     "Long recordings: with --write-wavs, those beyond --max-in-memory-duration (default 300 s) are\n"
     "read in passes with memory independent of their length and give the same wav.\n";
 
-// Kaldi's reverberate_data_dir.py takes booleans as "--shift-output true"; accept that form too.
-std::vector<std::string> join_boolean_values(int argc, char** argv, const std::vector<std::string>& flags) {
-  std::vector<std::string> out{argv[0]};
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    bool is_flag = false;
-    for (const auto& f : flags) is_flag |= (a == "--" + f);
-    if (is_flag && i + 1 < argc) {
-      std::string next = argv[i + 1];
-      for (char& c : next) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if (next == "true" || next == "false") {
-        out.push_back(a + "=" + next);
-        ++i;
-        continue;
-      }
-    }
-    out.push_back(a);
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   // Every utterance allocates and frees ~1 MB buffers; with glibc's defaults each one is a fresh
-  // mmap whose pages fault in again (~7% of the run). Keep freed memory in the heap instead.
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  // mmap whose pages fault in again (~7% of the run). Keep freed memory in the heap instead
+  // (32 MB is the largest threshold glibc accepts on 64-bit: a larger value is ignored).
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   return tsrir::run_program("reverberate-data", [&]() {
     tsrir::CommandLine cl("reverberate-data", kUsage);
     tsrir::ReverberateDataOptions o;
     o.Register(&cl);
-    std::vector<std::string> args =
-        join_boolean_values(argc, argv, {"shift-output", "normalize-output", "include-original-data"});
-    std::vector<const char*> cargs;
-    for (const auto& a : args) cargs.push_back(a.c_str());
     tsrir::register_output_options(&cl);
-    std::vector<std::string> dirs = cl.parse(static_cast<int>(cargs.size()), cargs.data(), 2, 2);
+    cl.accept_separate_boolean_values();  // "--shift-output true", as Kaldi's reverberate_data_dir.py
+    std::vector<std::string> dirs = cl.parse(argc, argv, 2, 2);
     tsrir::reverberate_data_dir(dirs[0], dirs[1], o);
     return 0;
   });

@@ -1,6 +1,7 @@
 #include "util/cli.h"
 
 #include <boost/program_options.hpp>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <set>
@@ -106,6 +107,15 @@ std::vector<std::string> CommandLine::parse(int argc, const char* const* argv, i
     std::string a = argv[i];
     if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
       const OptionSpec* spec = find(a.substr(2));
+      if (spec && spec->is_flag && separate_boolean_values_ && i + 1 < argc) {
+        std::string next = argv[i + 1];
+        for (char& c : next) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (next == "true" || next == "false") {
+          args.push_back(a + "=" + next);
+          ++i;
+          continue;
+        }
+      }
       if (spec && spec->is_flag) a += "=true";
       const OptionSpec* empty_valued = a.size() > 3 && a.find('=') == a.size() - 1 ? find(a.substr(2, a.size() - 3)) : nullptr;
       if (empty_valued && !empty_valued->is_flag) {

@@ -10,6 +10,7 @@
 
 #include "io/audio_io.h"
 #include "io/wav_reader.h"
+#include "sndfile_writer.h"
 #include "test_dir.h"
 #include "util/error.h"
 
@@ -26,20 +27,6 @@ std::vector<std::vector<float>> random_channels(size_t channels, size_t frames, 
   ch[0][0] = 1.0f;  // full scale both ways: the clipping ends of every encoding
   if (frames > 1) ch[0][1] = -1.0f;
   return ch;
-}
-
-void write_with_sndfile(const std::string& path, int format, int rate, const std::vector<std::vector<float>>& ch) {
-  SF_INFO info{};
-  info.samplerate = rate;
-  info.channels = static_cast<int>(ch.size());
-  info.format = format;
-  SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
-  ASSERT_NE(f, nullptr) << sf_strerror(nullptr);
-  std::vector<float> inter(ch[0].size() * ch.size());
-  for (size_t n = 0; n < ch[0].size(); ++n)
-    for (size_t c = 0; c < ch.size(); ++c) inter[n * ch.size() + c] = ch[c][n];
-  sf_writef_float(f, inter.data(), static_cast<sf_count_t>(ch[0].size()));
-  sf_close(f);
 }
 
 // libsndfile's own reading: de-interleaved floats and "<major> <subtype>" names.
