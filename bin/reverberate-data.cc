@@ -7,7 +7,6 @@
 #include "augment/reverberate_data.h"
 #include "io/owned_output.h"
 #include "util/cli.h"
-#include "util/strings.h"
 
 namespace {
 
@@ -74,91 +73,21 @@ const char* kUsage =
     "Long recordings: with --write-wavs, those beyond --max-in-memory-duration (default 300 s) are\n"
     "read in passes with memory independent of their length and give the same wav.\n";
 
-// Kaldi's reverberate_data_dir.py takes booleans as "--shift-output true"; accept that form too.
-std::vector<std::string> join_boolean_values(int argc, char** argv, const std::vector<std::string>& flags) {
-  std::vector<std::string> out{argv[0]};
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    bool is_flag = false;
-    for (const auto& f : flags) is_flag |= (a == "--" + f);
-    if (is_flag && i + 1 < argc) {
-      std::string next = argv[i + 1];
-      for (char& c : next) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-      if (next == "true" || next == "false") {
-        out.push_back(a + "=" + next);
-        ++i;
-        continue;
-      }
-    }
-    out.push_back(a);
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   // Every utterance allocates and frees ~1 MB buffers; with glibc's defaults each one is a fresh
-  // mmap whose pages fault in again (~7% of the run). Keep freed memory in the heap instead.
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  // mmap whose pages fault in again (~7% of the run). Keep freed memory in the heap instead
+  // (32 MB is the largest threshold glibc accepts on 64-bit: a larger value is ignored).
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   return tsrir::run_program("reverberate-data", [&]() {
     tsrir::CommandLine cl("reverberate-data", kUsage);
     tsrir::ReverberateDataOptions o;
-    std::string snr_reference = "early";
-    long long seed = 0;
-    cl.multi_option("rir-set-parameters", &o.rir_set_parameters,
-                    "'[weight,] rir_list': an RIR list (Kaldi rir_list or scp) and its weight; repeatable");
-    cl.multi_option("noise-set-parameters", &o.noise_set_parameters,
-                    "'[weight,] noise_list': a noise list (Kaldi noise_list or scp) and its weight; repeatable");
-    cl.option("num-replications", &o.num_replications, "number of reverberated copies of each recording");
-    cl.option("prefix", &o.prefix, "id prefix; copies are <prefix><i>-<id> (forced to rvb for several copies)");
-    cl.option("foreground-snrs", &o.foreground_snrs,
-              "SNRs (dB) of foreground noises: Kaldi's a:b:c list (cyclic), or lo..hi (uniform; extension)");
-    cl.option("background-snrs", &o.background_snrs,
-              "SNRs (dB) of background noises: Kaldi's a:b:c list (cyclic), or lo..hi (uniform; extension)");
-    cl.option("snr-reference", &snr_reference, "early (Kaldi: direct + early reverberation) or full");
-    cl.option("speech-rvb-probability", &o.speech_rvb_probability, "probability of reverberating a recording");
-    cl.option("isotropic-noise-addition-probability", &o.isotropic_noise_addition_probability,
-              "probability of adding the room's isotropic noise");
-    cl.option("pointsource-noise-addition-probability", &o.pointsource_noise_addition_probability,
-              "probability of adding point-source noises");
-    cl.option("max-noises-per-minute", &o.max_noises_per_minute,
-              "at most floor(N * duration / 60) point-source noises per recording (Kaldi)");
-    cl.option("max-noises-per-recording", &o.max_noises_per_recording,
-              "extension: if > 0, 1..N point-source noises per recording whatever its duration");
-    cl.option("noise-start", &o.noise_start,
-              "zero (Kaldi: background noises extended from their start) or random (extension: from a random "
-              "offset, looped over the whole recording)");
-    cl.option("point-source-noise-rir", &o.point_source_noise_rir,
-              "same-room (Kaldi: point sources convolved with an RIR of the recording's room) or none (extension)");
-    cl.option("pipe-dialect", &o.pipe_dialect,
-              "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
-    cl.flag("shift-output", &o.shift_output, "advance the output by the RIR's direct-path delay");
-    cl.flag("normalize-output", &o.normalize_output, "rescale each output to its input's power");
-    cl.flag("include-original-data", &o.include_original_data, "also keep the originals as copy 0");
-    cl.option("random-seed", &seed, "random seed");
-    cl.option("source-sampling-rate", &o.source_sampling_rate_hz,
-              "if > 0, the speech's rate in Hz (checked with --write-wavs; RIRs and noises are always resampled "
-              "to the speech's rate)");
-    cl.option("rir-smoothing-weight", &o.rir_smoothing_weight, "RIR probabilities mixed with uniform (Kaldi)");
-    cl.option("noise-smoothing-weight", &o.noise_smoothing_weight, "noise probabilities mixed with uniform (Kaldi)");
-    cl.option("write-wavs", &o.write_wavs, "write 16-bit wavs into this directory instead of pipes");
-    cl.option("pipe-program", &o.pipe_program,
-              "program called by the pipes (default: wav-reverberate next to this program)");
-    cl.option("num-threads", &o.num_threads, "threads for --write-wavs");
-    cl.option("max-in-memory-duration", &o.max_in_memory_s,
-              "with --write-wavs: recordings longer than this many seconds are reverberated in passes over the "
-              "file, with memory independent of their length and the same wav (temporaries in the wav dir); "
-              "0 = all");
-    std::vector<std::string> args =
-        join_boolean_values(argc, argv, {"shift-output", "normalize-output", "include-original-data"});
-    std::vector<const char*> cargs;
-    for (const auto& a : args) cargs.push_back(a.c_str());
+    o.Register(&cl);
     tsrir::register_output_options(&cl);
-    std::vector<std::string> dirs = cl.parse(static_cast<int>(cargs.size()), cargs.data(), 2, 2);
-    o.snr_reference = tsrir::parse_snr_reference(snr_reference);
-    o.random_seed = static_cast<uint64_t>(seed);
+    cl.accept_separate_boolean_values();  // "--shift-output true", as Kaldi's reverberate_data_dir.py
+    std::vector<std::string> dirs = cl.parse(argc, argv, 2, 2);
     tsrir::reverberate_data_dir(dirs[0], dirs[1], o);
     return 0;
   });

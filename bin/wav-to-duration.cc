@@ -1,10 +1,6 @@
 // wav-to-duration: drop-in for Kaldi's featbin/wav-to-duration (same name, options and output).
-#include <iostream>
-#include <limits>
-
 #include "augment/kaldi_options.h"
 #include "augment/wav_duration.h"
-#include "util/cli.h"
 
 namespace {
 
@@ -29,26 +25,10 @@ const char* kUsage =
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool read_entire_file = false;
-  auto define = [&](tsrir::KaldiOptionParser& po) {
-    po.add("read-entire-file", &read_entire_file,
-           "If true, decode every recording completely instead of reading file headers");
-  };
+  tsrir::WavDurationOptions options;
+  auto define = [&](tsrir::KaldiOptionParser& po) { options.Register(&po); };
   return tsrir::run_kaldi_program("wav-to-duration", kUsage, argc, argv, 2, define,
                                   [&](const std::vector<std::string>& args) {
-    const std::vector<tsrir::RecordingDuration> durations = tsrir::wav_durations(args[0], read_entire_file);
-    tsrir::write_duration_archive(args[1], durations);
-    double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
-    for (const auto& d : durations) {
-      sum += d.duration_s;
-      lo = std::min<double>(lo, d.duration_s);
-      hi = std::max<double>(hi, d.duration_s);
-    }
-    const size_t done = durations.size();
-    tsrir::log_info("Printed duration for " + std::to_string(done) + " audio files.");
-    if (done > 0)
-      tsrir::log_info("Mean duration was " + std::to_string(sum / done) + ", min and max durations were " +
-                      std::to_string(lo) + ", " + std::to_string(hi));
-    return done != 0 ? 0 : 1;  // Kaldi: 1 when nothing was written
-  });
+                                    return tsrir::run_wav_to_duration(options, args[0], args[1]);
+                                  });
 }

@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Reverberation through wav.scp pipes as Kaldi's feature extraction consumes them: one `bash -c`
-# per utterance, one (outer) wav-reverberate process per utterance plus a nested one per noise.
+# Reverberation through wav.scp pipes as Kaldi's feature extraction consumes them: one shell per
+# utterance running the pipe's command (Kaldi's Input opens "cmd |" with popen(), i.e. /bin/sh -c;
+# HARNESS=bash runs `bash -c` instead), one (outer) wav-reverberate process per utterance plus a
+# nested one per noise.
 # The same wav.scp (written once by reverberate-data with Kaldi's noise rules: an RIR of the room
 # and the room's isotropic noise extended to the utterance) is run with tsrir's wav-reverberate and,
 # when KALDI_ROOT is set, with Kaldi's (the pipes differ only in the program path). Prints wall and
 # CPU (user+sys of everything the pipes start) per row; Kaldi's row says "absent" without KALDI_ROOT.
+# The rows run interleaved, BLOCK (default 50) utterances at a time, so load that drifts during the
+# run weighs on all of them alike. A last row runs `/bin/true` the same way: the floor any program
+# pays in this harness (the shell and one exec).
 #
 # Usage: bench/augment/pipes_vs_kaldi.sh [<bin-dir>] [<num-utterances>]   (default build/bin, 1000)
 # Signals (synthetic, sox): "speech" = pink noise amplitude-modulated at 4 Hz, 10 s, 16-bit 16 kHz;
@@ -43,29 +48,44 @@ awk '{print $1, 10}' data/in/wav.scp > data/in/reco2dur
 "$BIN/reverberate-data" --rir-set-parameters rir_list --noise-set-parameters noise_list --random-seed 1 \
   data/in data/tsrir_form 2>/dev/null
 
-run_row() {  # <label> <dir holding wav-reverberate> <data dir>
-  local label=$1 dir=$2 t
-  t=$( { /usr/bin/time -f "%e %U %S" env PATH="$dir:$PATH" SCP="$3/wav.scp" bash -c '
-      while read -r id rest; do bash -c "${rest% |} > /dev/null" || exit 1; done < "$SCP"' ; } 2>&1 | tail -1)
-  set -- $t
-  awk -v l="$label" -v n="$N" -v w="$1" -v u="$2" -v s="$3" \
-    'BEGIN { printf "| %-34s | %5d | %8.2f | %8.2f | %7.2f | %7.2f |\n", l, n, w, u + s, 1000 * w / n, 1000 * (u + s) / n }'
-  echo "$1 $(echo "$2 + $3" | bc)" > "row_${label// /_}.txt"
-}
-echo
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); load before: $(cut -d' ' -f1-3 /proc/loadavg); $(date -u '+%Y-%m-%d %H:%M UTC')"
-echo "Kaldi's form: $(head -1 data/kaldi_form/wav.scp | cut -d' ' -f2- | sed "s|$WORK/||g")"
-echo "tsrir's form: $(head -1 data/tsrir_form/wav.scp | cut -d' ' -f2- | sed "s|$WORK/||g; s|$BIN/||g")"
-echo
-echo "| pipes                              | utts  | wall s   | CPU s    | wall ms/utt | CPU ms/utt |"
-echo "|------------------------------------|-------|----------|----------|---------|---------|"
-run_row tsrir "$BIN" data/tsrir_form
-run_row "tsrir on Kaldi's form" "$BIN" data/kaldi_form
+# The rows run interleaved, a block of utterances at a time (tsrir, tsrir on Kaldi's form, Kaldi,
+# then the next block), so that a machine whose load drifts during the run weighs on every row alike.
+BLOCK=${BLOCK:-50}
+HARNESS=${HARNESS:-sh}
+case $HARNESS in sh | bash) ;; *) echo "HARNESS must be sh or bash" >&2; exit 2 ;; esac
+mkdir -p data/floor
+awk '{ print $1, "/bin/true |" }' data/tsrir_form/wav.scp > data/floor/wav.scp
+rows=("tsrir|$BIN|data/tsrir_form" "tsrir on Kaldi's form|$BIN|data/kaldi_form" "floor: $HARNESS -c /bin/true|$BIN|data/floor")
+have_kaldi=0
 if [ -n "${KALDI_ROOT:-}" ] && [ -x "$KALDI_ROOT/src/featbin/wav-reverberate" ]; then
-  run_row kaldi "$KALDI_ROOT/src/featbin" data/kaldi_form
-  read -r tw tc < row_tsrir.txt; read -r kw kc < row_kaldi.txt
-  awk -v tw="$tw" -v tc="$tc" -v kw="$kw" -v kc="$kc" \
-    'BEGIN { printf "\ntsrir / Kaldi speed: %.2fx wall, %.2fx CPU\n", kw / tw, kc / tc }'
+  rows+=("kaldi|$KALDI_ROOT/src/featbin|data/kaldi_form")
+  have_kaldi=1
+fi
+for r in "${!rows[@]}"; do echo "0 0 0" > "row_$r.txt"; done
+for ((first = 0; first < N; first += BLOCK)); do
+  for r in "${!rows[@]}"; do
+    IFS='|' read -r label dir data <<<"${rows[$r]}"
+    sed -n "$((first + 1)),$((first + BLOCK))p" "$data/wav.scp" > block.scp
+    t=$( { /usr/bin/time -f "%e %U %S" env PATH="$dir:$PATH" SCP=block.scp H="$HARNESS" bash -c '
+        while read -r id rest; do "$H" -c "${rest% |}" > /dev/null || exit 1; done < "$SCP"' ; } 2>&1 | tail -1)
+    read -r w0 c0 n0 < "row_$r.txt"
+    set -- $t
+    echo "$w0 $c0 $n0" | awk -v w="$1" -v u="$2" -v s="$3" -v b="$(wc -l < block.scp)" \
+      '{ printf "%.3f %.3f %d\n", $1 + w, $2 + u + s, $3 + b }' > "row_$r.txt"
+  done
+done
+for r in "${!rows[@]}"; do
+  IFS='|' read -r label dir data <<<"${rows[$r]}"
+  read -r w c n < "row_$r.txt"
+  awk -v l="$label" -v n="$n" -v w="$w" -v c="$c" \
+    'BEGIN { printf "| %-34s | %5d | %8.2f | %8.2f | %7.2f | %7.2f |\n", l, n, w, c, 1000 * w / n, 1000 * c / n }'
+done
+if [ $have_kaldi = 1 ]; then
+  read -r tw tc tn < row_0.txt; read -r kw kc kn < row_3.txt
+  read -r fw fc fn < row_2.txt
+  awk -v tw="$tw" -v tc="$tc" -v kw="$kw" -v kc="$kc" -v fw="$fw" -v fc="$fc" \
+    'BEGIN { printf "\ntsrir / Kaldi speed: %.2fx wall, %.2fx CPU", kw / tw, kc / tc;
+             printf " (above the floor: %.2fx wall, %.2fx CPU)\n", (kw - fw) / (tw - fw), (kc - fc) / (tc - fc) }'
 else
   echo "| kaldi                              | absent (KALDI_ROOT not set or no src/featbin/wav-reverberate) |"
 fi

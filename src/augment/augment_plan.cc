@@ -120,8 +120,8 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
     input = shell_quote(input);
   }
   out += shell_quote(options.program);
-  out += " " + std::string(options.shift_output ? "--shift-output=true" : "--shift-output=false");
-  if (!options.normalize_output) out += " --normalize-output=false";
+  out += " " + std::string(options.reverb.shift_output ? "--shift-output=true" : "--shift-output=false");
+  if (!options.reverb.normalize_output) out += " --normalize-output=false";
   if (plan.rir >= 0)
     out += " " + shell_quote("--impulse-response=" + sources.rirs[static_cast<size_t>(plan.rir)].rxfilename);
   if (!plan.noises.empty()) {
@@ -166,11 +166,11 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
       out += " " + shell_quote("--additive-offsets=" + joined(offsets));
       out += " " + shell_quote("--additive-loops=" + joined(loops));
     }
-    if (options.snr_reference != SnrReference::kEarlyReverb) {
+    if (options.reverb.snr_reference != SnrReference::kEarlyReverb) {
       if (!options.tsrir_extensions)
         throw Error("--snr-reference=full needs tsrir's wav-reverberate; the pipe program " + options.program +
                     " is taken to be Kaldi's");
-      out += " --snr-reference=" + snr_reference_name(options.snr_reference);
+      out += " --snr-reference=" + snr_reference_name(options.reverb.snr_reference);
     }
   }
   out += " " + input + " - |";

@@ -59,9 +59,7 @@ std::string pipe_number(double value);
 
 struct PipeOptions {
   std::string program = "wav-reverberate";
-  bool shift_output = true;
-  bool normalize_output = true;
-  SnrReference snr_reference = SnrReference::kEarlyReverb;
+  ReverbOptions reverb;  // its --shift-output, --normalize-output and --snr-reference go into the pipe
   // false: the pipe program may be Kaldi's binary, so options only tsrir's wav-reverberate has
   // (--additive-offsets, --additive-loops, --snr-reference) are refused with an error.
   bool tsrir_extensions = true;

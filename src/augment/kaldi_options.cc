@@ -9,8 +9,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "util/cli.h"
 #include "util/error.h"
+#include "util/program.h"
 #include "util/strings.h"
 
 namespace tsrir {
@@ -48,65 +48,73 @@ bool to_bool(std::string text, const std::string& original) {
 }  // namespace
 
 KaldiOptionParser::KaldiOptionParser(std::string usage) : usage_(std::move(usage)) {
-  add_entry("config", Kind::kString, &config_,
-            "Configuration file to read (this option may be repeated)", "", true);
-  add_entry("help", Kind::kBool, &help_, "Print out usage message", "false", true);
-  add_entry("print-args", Kind::kBool, &print_args_, "Print the command line arguments (to stderr)",
-            "true", true);
-  add_entry("verbose", Kind::kInt, &verbose_, "Verbose level (higher->more logging)", "0", true);
+  // The standard options, as Kaldi's ParseOptions registers them; not library options.
+  auto standard = [this](const std::string& name, const std::string& help, const std::string& default_text,
+                         bool is_flag, std::function<void(const std::string&)> set) {
+    OptionSpec spec;
+    spec.name = name;
+    spec.help = help;
+    spec.default_text = default_text;
+    spec.is_flag = is_flag;
+    spec.set = std::move(set);
+    add_entry(std::move(spec), true);
+  };
+  standard("config", "Configuration file to read (this option may be repeated)", "", false,
+           [this](const std::string& v) { config_ = v; });
+  standard("help", "Print out usage message", "false", true, [this](const std::string& v) { help_ = v == "true"; });
+  standard("print-args", "Print the command line arguments (to stderr)", "true", true,
+           [this](const std::string& v) { print_args_ = v == "true"; });
+  standard("verbose", "Verbose level (higher->more logging)", "0", false,
+           [this](const std::string& v) { verbose_ = static_cast<int>(parse_int(v, "option --verbose")); });
 }
 
-void KaldiOptionParser::add_entry(const std::string& name, Kind kind, void* target,
-                                  const std::string& help, const std::string& default_text,
-                                  bool standard) {
-  std::string key = normalize_name(name);
-  if (entries_.count(key)) throw Error("option registered twice: --" + name);
-  entries_[key] = Entry{name, kind, target, help, default_text, standard};
+void KaldiOptionParser::add_entry(OptionSpec spec, bool standard) {
+  const std::string key = normalize_name(spec.name);
+  if (key.empty() || index_.count(key)) throw Error("option --" + spec.name + " registered twice (a program bug)");
+  index_[key] = entries_.size();
+  Entry e;
+  e.spec = std::move(spec);
+  e.standard = standard;
+  entries_.push_back(std::move(e));
 }
 
-void KaldiOptionParser::add(const std::string& name, bool* value, const std::string& help) {
-  add_entry(name, Kind::kBool, value, help, *value ? "true" : "false", false);
+void KaldiOptionParser::RegisterSpec(OptionSpec spec) { add_entry(std::move(spec), false); }
+
+void KaldiOptionParser::RegisterAlias(const std::string& alias, const std::string& name) {
+  const std::string key = normalize_name(alias);
+  auto it = index_.find(normalize_name(name));
+  if (it == index_.end() || index_.count(key))
+    throw Error("alias --" + alias + " of --" + name + ": unknown option or name taken (a program bug)");
+  index_[key] = it->second;
+  entries_[it->second].aliases.push_back(alias);
 }
-void KaldiOptionParser::add(const std::string& name, int* value, const std::string& help) {
-  add_entry(name, Kind::kInt, value, help, std::to_string(*value), false);
-}
-void KaldiOptionParser::add(const std::string& name, float* value, const std::string& help) {
-  add_entry(name, Kind::kFloat, value, help, format_double(*value), false);
-}
-void KaldiOptionParser::add(const std::string& name, double* value, const std::string& help) {
-  add_entry(name, Kind::kDouble, value, help, format_double(*value), false);
-}
-void KaldiOptionParser::add(const std::string& name, std::string* value, const std::string& help) {
-  add_entry(name, Kind::kString, value, help, *value, false);
+
+KaldiOptionParser::Entry* KaldiOptionParser::find(const std::string& normalized_key) {
+  auto it = index_.find(normalized_key);
+  return it == index_.end() ? nullptr : &entries_[it->second];
 }
 
 void KaldiOptionParser::set_option(const std::string& key, const std::string& value,
                                    bool has_equal_sign, const std::string& original) {
-  auto it = entries_.find(key);
-  if (it == entries_.end()) throw Error("Invalid option " + original);
-  const Entry& e = it->second;
-  switch (e.kind) {
-    case Kind::kBool:
-      if (has_equal_sign && value.empty()) throw Error("Invalid option --" + key + "=");
-      *static_cast<bool*>(e.target) = to_bool(value, original);
-      break;
-    case Kind::kInt: {
-      if (!has_equal_sign) throw Error("Invalid option " + original + " (option format is --x=y)");
-      *static_cast<int*>(e.target) = static_cast<int>(parse_int(value, "option --" + key));
-      break;
-    }
-    case Kind::kFloat:
-      if (!has_equal_sign) throw Error("Invalid option " + original + " (option format is --x=y)");
-      *static_cast<float*>(e.target) = static_cast<float>(parse_double(value, "option --" + key));
-      break;
-    case Kind::kDouble:
-      if (!has_equal_sign) throw Error("Invalid option " + original + " (option format is --x=y)");
-      *static_cast<double*>(e.target) = parse_double(value, "option --" + key);
-      break;
-    case Kind::kString:
-      if (!has_equal_sign) throw Error("Invalid option " + original + " (option format is --x=y)");
-      *static_cast<std::string*>(e.target) = value;
-      break;
+  Entry* e = find(key);
+  if (!e) throw Error("Invalid option " + original);
+  const OptionSpec& spec = e->spec;
+  std::string text = value;
+  if (spec.is_flag) {
+    // Kaldi's booleans: --x, --x=true|t|1, --x=false|f|0 (any case); "--x=" is an error.
+    if (has_equal_sign && value.empty()) throw Error("Invalid option --" + key + "=");
+    text = to_bool(value, original) ? "true" : "false";
+  } else if (!has_equal_sign) {
+    throw Error("Invalid option " + original + " (option format is --x=y)");
+  }
+  if (spec.repeated && spec.clear && !e->cleared) {
+    spec.clear();
+    e->cleared = true;
+  }
+  try {
+    spec.set(text);
+  } catch (const Error& err) {
+    throw Error("Invalid option " + original + ": " + err.what());
   }
 }
 
@@ -146,6 +154,8 @@ KaldiOptionParser::Outcome KaldiOptionParser::parse(int argc, const char* const*
     if (key == "config") read_config_file(trim(value));
     if (key == "help") return Outcome::kHelp;
   }
+  // A repeated option given on the command line replaces what the config files gave.
+  for (Entry& e : entries_) e.cleared = false;
   int i = 1;
   bool double_dash_seen = false;
   for (; i < argc; ++i) {
@@ -180,19 +190,28 @@ KaldiOptionParser::Outcome KaldiOptionParser::parse(int argc, const char* const*
 std::string KaldiOptionParser::usage_text() const {
   std::ostringstream out;
   out << '\n' << usage_ << '\n';
+  auto line = [&out](const std::string& name, const std::string& help) {
+    out << "  --" << std::setw(25) << std::left << name << " : " << help;
+  };
   bool header = false;
-  for (const auto& [key, e] : entries_) {
+  for (const Entry& e : entries_) {
     if (e.standard) continue;
     if (!header) out << "Options:\n";
     header = true;
-    out << "  --" << std::setw(25) << std::left << e.name << " : " << e.help << " (default: "
-        << (e.kind == Kind::kString ? "'" + e.default_text + "'" : e.default_text) << ")\n";
+    line(e.spec.name, e.spec.help);
+    if (!e.spec.repeated) out << " (default: " << e.spec.default_text << ")";
+    out << '\n';
+    for (const std::string& alias : e.aliases) {
+      line(alias, "same as --" + e.spec.name);
+      out << '\n';
+    }
   }
   if (header) out << '\n';
   out << "Standard options:\n";
-  for (const auto& [key, e] : entries_) {
+  for (const Entry& e : entries_) {
     if (!e.standard) continue;
-    out << "  --" << std::setw(25) << std::left << e.name << " : " << e.help << '\n';
+    line(e.spec.name, e.spec.help);
+    out << '\n';
   }
   out << '\n';
   return out.str();

@@ -1,26 +1,29 @@
 // Kaldi's own command-line syntax (util/parse-options.cc), for programs that must be drop-in
-// replacements of a Kaldi binary (wav-reverberate). It differs from tsrir::CommandLine on purpose:
-// only `--name=value` (a bare `--name` is `true` for booleans and an error otherwise, so
-// `--name value` fails as it does in Kaldi), options end at the first positional argument or at
-// `--`, names are case-insensitive with `_` == `-`, and the standard options --config, --help,
-// --print-args and --verbose exist.
+// replacements of a Kaldi binary (wav-reverberate, wav-to-duration). It implements OptionsItf, so the
+// library option structs register themselves here as they do with tsrir::CommandLine, but the syntax
+// is Kaldi's on purpose: only `--name=value` (a bare `--name` is `true` for booleans and an error
+// otherwise, so `--name value` fails as it does in Kaldi), booleans also as t/f/1/0, options end at
+// the first positional argument or at `--`, names are case-insensitive with `_` == `-`, and the
+// standard options --config, --help, --print-args and --verbose exist. It uses no option library:
+// wav-reverberate starts once per utterance in Kaldi's pipes, and every shared library it loads is
+// paid at each start.
 #pragma once
 #include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "util/options.h"
+
 namespace tsrir {
 
-class KaldiOptionParser {
+class KaldiOptionParser : public OptionsItf {
  public:
   explicit KaldiOptionParser(std::string usage);
 
-  void add(const std::string& name, bool* value, const std::string& help);
-  void add(const std::string& name, int* value, const std::string& help);
-  void add(const std::string& name, float* value, const std::string& help);
-  void add(const std::string& name, double* value, const std::string& help);
-  void add(const std::string& name, std::string* value, const std::string& help);
+  using OptionsItf::Register;
+  void RegisterSpec(OptionSpec spec) override;
+  void RegisterAlias(const std::string& alias, const std::string& name) override;
 
   enum class Outcome { kOk, kHelp };
   // Parses argv. Returns kHelp when --help was given (the caller prints usage_text() and exits 0).
@@ -38,23 +41,21 @@ class KaldiOptionParser {
   static std::string escape_for_echo(const std::string& word);
 
  private:
-  enum class Kind { kBool, kInt, kFloat, kDouble, kString };
   struct Entry {
-    std::string name;
-    Kind kind;
-    void* target;
-    std::string help;
-    std::string default_text;
-    bool standard;
+    OptionSpec spec;
+    bool standard = false;
+    std::vector<std::string> aliases;
+    bool cleared = false;  // a repeated option: its default list was replaced by the first value
   };
-  void add_entry(const std::string& name, Kind kind, void* target, const std::string& help,
-                 const std::string& default_text, bool standard);
+  void add_entry(OptionSpec spec, bool standard);
+  Entry* find(const std::string& normalized_key);
   void set_option(const std::string& key, const std::string& value, bool has_equal_sign,
                   const std::string& original);
   void read_config_file(const std::string& path);
 
   std::string usage_;
-  std::map<std::string, Entry> entries_;  // by normalised name
+  std::vector<Entry> entries_;                 // in registration order (the --help order)
+  std::map<std::string, size_t> index_;        // normalised name or alias -> entries_ index
   std::vector<std::string> positionals_;
   std::string config_;
   bool help_ = false;

@@ -3,15 +3,42 @@
 #include <algorithm>
 #include <cmath>
 
+#include "augment/reverb_steps.h"
 #include "util/error.h"
 
 namespace tsrir {
 
-std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
-                                       double duration_s) {
+std::vector<float> nested_noise_signal(std::vector<float> noise, double sample_rate_hz, const PreparedRir* rir,
+                                       double duration_s, bool noise_is_int16, bool kaldi_compat) {
   ReverbOptions nested;  // wav-reverberate's defaults: shifted, normalised
-  nested.duration_s = duration_s;
-  std::vector<float> signal = reverberate_channel(noise, sample_rate_hz, rir, {}, nested);
+  nested.duration_s = static_cast<float>(duration_s);
+  nested.kaldi_compat = kaldi_compat;
+  std::vector<float> signal;
+  if (!rir && !noise.empty()) {
+    // Without an RIR the nested program's output is its input: normalisation scales by
+    // sqrt(p / p) = 1 exactly (or 1 for silence), so only the tiling or cut to the duration is
+    // left, which needs no powers (and only the first samples when cut).
+    const size_t length = nested.duration_s > 0 ? kaldi_duration_samples(sample_rate_hz, nested.duration_s)
+                                                : noise.size();
+    if (length <= noise.size()) {
+      noise.resize(length);
+      signal = std::move(noise);
+    } else {
+      signal.resize(length);
+      for (size_t done = 0; done < length;) {
+        const size_t run = std::min(noise.size(), length - done);
+        std::copy(noise.begin(), noise.begin() + static_cast<long>(run), signal.begin() + static_cast<long>(done));
+        done += run;
+      }
+    }
+    if (noise_is_int16) return signal;
+  } else {
+    signal = reverberate_channel(noise, sample_rate_hz, rir, {}, nested);
+  }
+  if (kaldi_compat) {
+    kaldi_truncate_to_int16(&signal);
+    return signal;
+  }
   // The pipe's 16-bit WAV: encode_wav()'s rounding and clipping, read back as s / 32768 (the
   // equality with encode + decode is checked by InProcessNestedNoiseEqualsTheNestedPipe).
   for (float& v : signal) {

@@ -18,9 +18,14 @@ namespace tsrir {
 // process: `noise` convolved with `rir` (null = none) with wav-reverberate's defaults (shifted,
 // normalised), repeated or cut to `duration_s` (0 = as is), rounded to 16 bits as the pipe between
 // the two programs does. Used by wav-reverberate's --additive-impulse-responses/--additive-durations
-// and by reverberate-data's materialised path, so both equal the nested pipe.
-std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
-                                       double duration_s);
+// and by reverberate-data's materialised path, so both equal the nested pipe. Without an RIR the
+// result depends only on the first int(fs * duration) samples of `noise` (when it is longer): a
+// caller may pass just those.
+// `noise_is_int16`: its samples are 16-bit PCM values, which the pipe's rounding to 16 bits leaves
+// as they are when there is no RIR (the rounding is then skipped). `kaldi_compat`: as Kaldi's own
+// nested program computes it (ReverbOptions::kaldi_compat), truncated to 16 bits.
+std::vector<float> nested_noise_signal(std::vector<float> noise, double sample_rate_hz, const PreparedRir* rir,
+                                       double duration_s, bool noise_is_int16 = false, bool kaldi_compat = false);
 
 AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr<const std::vector<float>> noise,
                                     const PreparedRir* rir, double sample_rate_hz);

@@ -124,15 +124,20 @@ void add_placed(const AdditivePlacement& p, size_t first, float* y_part, size_t 
   }
 }
 
+size_t kaldi_duration_samples(double sample_rate_hz, float duration_s) {
+  return static_cast<size_t>(static_cast<float>(sample_rate_hz) * duration_s);
+}
+
 OutputGeometry output_geometry(size_t input_length, const PreparedRir* rir, const ReverbOptions& options,
                                double sample_rate_hz) {
   OutputGeometry g;
   const size_t y_length = rir ? input_length + rir->size() - 1 : input_length;
   g.shift = (rir && options.shift_output) ? rir->peak_index() : 0;
   g.available = (rir && options.shift_output) ? input_length : y_length;
-  g.length = options.duration_s > 0 ? static_cast<size_t>(static_cast<float>(sample_rate_hz) *
-                                                          static_cast<float>(options.duration_s))
-                                    : g.available;
+  g.length = options.duration_s > 0 ? kaldi_duration_samples(sample_rate_hz, options.duration_s) : g.available;
+  // Kaldi tiles the input-length head of y whenever the output is longer than the input: with
+  // --shift-output=false its N + M - 1 samples end with the first M - 1 again (kaldi_compat).
+  if (options.kaldi_compat) g.available = input_length;
   return g;
 }
 

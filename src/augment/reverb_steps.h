@@ -50,6 +50,9 @@ AdditivePlacement place_additive(const AdditiveSignal& a, size_t index, size_t y
 // y_part holds y[first, first + length): adds the placed signal's samples that fall there.
 void add_placed(const AdditivePlacement& p, size_t first, float* y_part, size_t length);
 
+// Kaldi's length of a --duration output: int32(BaseFloat fs * BaseFloat duration).
+size_t kaldi_duration_samples(double sample_rate_hz, float duration_s);
+
 // The output is out[t] = gain * y[shift + t % available] for t < length.
 struct OutputGeometry {
   size_t shift = 0;

@@ -1,7 +1,9 @@
 #include "augment/reverberate.h"
 
 #include <algorithm>
+#include <cmath>
 
+#include "augment/kaldi_block_error.h"
 #include "augment/reverb_steps.h"
 #include "util/error.h"
 
@@ -33,6 +35,19 @@ std::string snr_reference_name(SnrReference reference) {
   return reference == SnrReference::kEarlyReverb ? "early" : "full";
 }
 
+void ReverbOptions::Register(OptionsItf* opts) {
+  opts->Register("shift-output", &shift_output,
+                 "Advance the output by the RIR's peak index (direct-path delay) and keep the input's length; "
+                 "false: the whole reverberant signal (input length + RIR length - 1)");
+  opts->Register("normalize-output", &normalize_output,
+                 "Scale the output to the power of the input after reverberation and noise");
+  opts->RegisterEnum("snr-reference", &snr_reference,
+                     {{"early", SnrReference::kEarlyReverb}, {"full", SnrReference::kFullReverb}},
+                     "tsrir extension: what the SNRs are relative to: early = Kaldi's early-reverberation "
+                     "energy (speech convolved with the RIR from 1 ms before to 50 ms after its peak), full = "
+                     "the whole reverberant speech");
+}
+
 void early_reverb_window(size_t peak, size_t length, double sample_rate_hz, size_t* begin, size_t* end) {
   // Kaldi evaluates these in float and truncates toward zero; at 16 kHz that is exactly
   // 16 samples before and 800 after the peak, at 44.1 kHz 45 before.
@@ -53,8 +68,37 @@ PreparedRir::PreparedRir(std::vector<float> rir, double sample_rate_hz)
       early_((early_reverb_window(peak_, rir_.size(), sample_rate_hz, &early_begin_, &early_end_),
               padded_early_part(rir_, early_begin_, early_end_))) {}
 
+double PreparedRir::kaldi_early_reverb_energy(const std::vector<float>& x) const {
+  // Kaldi convolves the unpadded early part, over N + E - 1 outputs, with its block error.
+  const std::vector<float> early(rir_.begin() + static_cast<long>(early_begin_),
+                                 rir_.begin() + static_cast<long>(early_end_));
+  const size_t length = x.size() + early.size() - 1;
+  std::vector<float> y(length);
+  early_.convolve_blocks(x, [&y, length](size_t first, const float* values, size_t count) {
+    if (first < length) std::copy(values, values + std::min(count, length - first), y.begin() + static_cast<long>(first));
+  });
+  add_kaldi_block_error(x, early, y.data(), y.size());
+  return mean_power(y);
+}
+
+long long kaldi_truncate_to_int16(std::vector<float>* samples) {
+  long long clipped = 0;
+  for (float& v : *samples) {
+    float s = std::trunc(v * 32768.0f);
+    if (s > 32767.0f || s < -32768.0f) {
+      ++clipped;
+      s = std::clamp(s, -32768.0f, 32767.0f);
+    }
+    v = s / 32768.0f;
+  }
+  return clipped;
+}
+
 double PreparedRir::early_reverb_energy(const std::vector<float>& x) const {
-  return early_energy_from_padded_power(mean_power(early_.convolve(x)), x.size(), *this);
+  // Summed block by block as it is produced (PowerSum gives the same sum however it is cut).
+  PowerSum sum;
+  early_.convolve_blocks(x, [&sum](size_t, const float* values, size_t count) { sum.add(values, count); });
+  return early_energy_from_padded_power(sum.mean(), x.size(), *this);
 }
 
 std::vector<float> reverberate_channel(const std::vector<float>& input, double sample_rate_hz,
@@ -69,10 +113,16 @@ std::vector<float> reverberate_channel(const std::vector<float>& input, double s
   double reference_energy = power_before;
   if (rir) {
     y = rir->convolve_full(input);
+    if (options.kaldi_compat) add_kaldi_block_error(input, rir->samples(), y.data(), y.size());
     // Only the additive signals' scales use it (the early convolution is a third of the work).
-    if (!additive.empty() || parts)
-      reference_energy = options.snr_reference == SnrReference::kEarlyReverb ? rir->early_reverb_energy(input)
-                                                                             : mean_power(y);
+    if (!additive.empty() || parts) {
+      if (options.snr_reference == SnrReference::kFullReverb) {
+        reference_energy = mean_power(y);
+      } else {
+        reference_energy =
+            options.kaldi_compat ? rir->kaldi_early_reverb_energy(input) : rir->early_reverb_energy(input);
+      }
+    }
   } else {
     y = input;
   }

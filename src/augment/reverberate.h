@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dsp/convolve.h"
+#include "util/options.h"
 
 namespace tsrir {
 
@@ -35,6 +36,8 @@ class PreparedRir {
   std::vector<float> convolve_full(const std::vector<float>& x) const { return full_.convolve(x); }
   // Kaldi's early-reverberation energy: mean((x ⊛ h_early)^2) over N + L_early - 1 samples.
   double early_reverb_energy(const std::vector<float>& x) const;
+  // The same as Kaldi's binary computes it, with the error of its block convolution.
+  double kaldi_early_reverb_energy(const std::vector<float>& x) const;
   // The engines themselves, for the streaming path (reverberate_stream.h): h and the zero-padded
   // h_early, whose length early_filter_length() is >= early_end() - early_begin().
   const Convolver& full_convolver() const { return full_; }
@@ -67,15 +70,29 @@ struct AdditiveSignal {
 struct ReverbOptions {
   bool shift_output = true;      // drop the direct-path delay (shift by the RIR's peak index)
   bool normalize_output = true;  // rescale to the input's power
-  double volume = 0.0;           // > 0: fixed gain instead of normalisation
-  double duration_s = 0.0;       // > 0: output length int(fs * duration), tiled if longer
+  float volume = 0.0f;           // > 0: fixed gain instead of normalisation (Kaldi's BaseFloat)
+  float duration_s = 0.0f;       // > 0: output length int(fs * duration), tiled if longer (BaseFloat)
   SnrReference snr_reference = SnrReference::kEarlyReverb;
   // Extension: each additive signal is tiled from its offset to the end of the reverberant
   // signal (paper §4.1: noise started at a random position and repeated in a loop), and its
   // power is measured over exactly the samples that are added. Without it (Kaldi), a signal is
   // added once and its power is measured over its own length.
   bool loop_additive_signals = false;
+  // Extension: reproduce Kaldi's wav-reverberate numerics, defects included (kaldi_block_error.h):
+  // the error of its FFT block convolution in the reverberant speech and in the early energy, and
+  // with shift_output false its output of N + M - 1 samples made of the first N repeated (the
+  // reverberant tail dropped). The caller also truncates 16-bit output toward zero, as Kaldi does
+  // (kaldi_truncate_to_int16).
+  bool kaldi_compat = false;
+
+  // The options wav-reverberate and reverberate-data share, under Kaldi's names: --shift-output,
+  // --normalize-output, and tsrir's --snr-reference. wav-reverberate registers the others itself.
+  void Register(OptionsItf* opts);
 };
+
+// Kaldi's 16-bit output: samples (full scale 1) truncated toward zero to s / 32768 and clipped to
+// [-32768, 32767] / 32768, in place; returns how many were clipped.
+long long kaldi_truncate_to_int16(std::vector<float>* samples);
 
 // Parts kept separately for verification: both are in the unshifted, full-length domain
 // (length N + M - 1, or N without an RIR) and before normalisation/volume.

@@ -164,6 +164,52 @@ std::string default_pipe_program() {
   return "wav-reverberate";
 }
 
+void ReverberateDataOptions::Register(OptionsItf* opts) {
+  opts->Register("rir-set-parameters", &rir_set_parameters,
+                 "'[weight,] rir_list': an RIR list (Kaldi rir_list or scp) and its weight; repeatable");
+  opts->Register("noise-set-parameters", &noise_set_parameters,
+                 "'[weight,] noise_list': a noise list (Kaldi noise_list or scp) and its weight; repeatable");
+  opts->Register("num-replications", &num_replications, "number of reverberated copies of each recording");
+  opts->Register("prefix", &prefix, "id prefix; copies are <prefix><i>-<id> (forced to rvb for several copies)");
+  opts->Register("foreground-snrs", &foreground_snrs,
+                 "SNRs (dB) of foreground noises: Kaldi's a:b:c list (cyclic), or lo..hi (uniform; extension)");
+  opts->Register("background-snrs", &background_snrs,
+                 "SNRs (dB) of background noises: Kaldi's a:b:c list (cyclic), or lo..hi (uniform; extension)");
+  opts->Register("speech-rvb-probability", &speech_rvb_probability, "probability of reverberating a recording");
+  opts->Register("isotropic-noise-addition-probability", &isotropic_noise_addition_probability,
+                 "probability of adding the room's isotropic noise");
+  opts->Register("pointsource-noise-addition-probability", &pointsource_noise_addition_probability,
+                 "probability of adding point-source noises");
+  opts->Register("max-noises-per-minute", &max_noises_per_minute,
+                 "at most floor(N * duration / 60) point-source noises per recording (Kaldi)");
+  opts->Register("max-noises-per-recording", &max_noises_per_recording,
+                 "extension: if > 0, 1..N point-source noises per recording whatever its duration");
+  opts->Register("noise-start", &noise_start,
+                 "zero (Kaldi: background noises extended from their start) or random (extension: from a random "
+                 "offset, looped over the whole recording)");
+  opts->Register("point-source-noise-rir", &point_source_noise_rir,
+                 "same-room (Kaldi: point sources convolved with an RIR of the recording's room) or none (extension)");
+  opts->Register("pipe-dialect", &pipe_dialect,
+                 "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
+  reverb.Register(opts);
+  opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
+  opts->Register("random-seed", &random_seed, "random seed (any integer; all draws derive from it)");
+  opts->RegisterAlias("seed", "random-seed");
+  opts->Register("source-sampling-rate", &source_sampling_rate_hz,
+                 "if > 0, the speech's rate in Hz (checked with --write-wavs; RIRs and noises are always resampled "
+                 "to the speech's rate)");
+  opts->Register("rir-smoothing-weight", &rir_smoothing_weight, "RIR probabilities mixed with uniform (Kaldi)");
+  opts->Register("noise-smoothing-weight", &noise_smoothing_weight, "noise probabilities mixed with uniform (Kaldi)");
+  opts->Register("write-wavs", &write_wavs, "write 16-bit wavs into this directory instead of pipes");
+  opts->Register("pipe-program", &pipe_program,
+                 "program called by the pipes (default: wav-reverberate next to this program)");
+  opts->Register("num-threads", &num_threads, "threads for --write-wavs");
+  opts->Register("max-in-memory-duration", &max_in_memory_s,
+                 "with --write-wavs: recordings longer than this many seconds are reverberated in passes over the "
+                 "file, with memory independent of their length and the same wav (temporaries in the wav dir); "
+                 "0 = all");
+}
+
 ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
                                             const ReverberateDataOptions& options) {
   if (options.speech_rvb_probability < 0 || options.speech_rvb_probability > 1)
@@ -247,9 +293,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     }
     PipeOptions pipe;
     pipe.program = options.pipe_program.empty() ? default_pipe_program() : options.pipe_program;
-    pipe.shift_output = options.shift_output;
-    pipe.normalize_output = options.normalize_output;
-    pipe.snr_reference = options.snr_reference;
+    pipe.reverb = options.reverb;
     pipe.tsrir_extensions = options.pipe_dialect == "tsrir" ||
                             (options.pipe_dialect == "auto" && is_tsrir_pipe_program(pipe.program));
     for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = format_pipe(plan, sources, pipe);
@@ -265,10 +309,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     wav_dir->check_names(wav_names);
     const std::string temp_wav_dir = wav_dir->path();
 
-    ReverbOptions reverb;
-    reverb.shift_output = options.shift_output;
-    reverb.normalize_output = options.normalize_output;
-    reverb.snr_reference = options.snr_reference;
+    const ReverbOptions& reverb = options.reverb;
 
     LoadOnceCache<PreparedRir> rir_cache;
     LoadOnceCache<std::vector<float>> noise_cache;
@@ -367,7 +408,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     }
   }
   // Shifted outputs keep the input's length, so its durations carry over to the new ids.
-  if (options.shift_output) {
+  if (options.reverb.shift_output) {
     for (const RecordingPlan& plan : plans) output.reco2dur[plan.new_id] = plan.duration_s;
   }
   write_data_dir(out.path(), output);

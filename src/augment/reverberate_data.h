@@ -7,6 +7,7 @@
 
 #include "augment/reverberate.h"
 #include "augment/speech_input.h"
+#include "util/options.h"
 
 namespace tsrir {
 
@@ -25,20 +26,24 @@ struct ReverberateDataOptions {
   std::string noise_start = "zero";                // zero (Kaldi) | random (extension: offset, looped)
   std::string point_source_noise_rir = "same-room";  // same-room (Kaldi) | none (extension)
   std::string pipe_dialect = "auto";               // auto | tsrir | kaldi: may pipes use our extensions?
-  bool shift_output = true;
-  bool normalize_output = true;
+  // --shift-output, --normalize-output, --snr-reference: the per-recording output rules, as the
+  // pipes' wav-reverberate (or --write-wavs) applies them.
+  ReverbOptions reverb;
   bool include_original_data = false;
-  uint64_t random_seed = 0;
+  Seed random_seed = 0;
   double source_sampling_rate_hz = 0.0;            // > 0: speech must have this rate
   double rir_smoothing_weight = 0.3;
   double noise_smoothing_weight = 0.3;
-  SnrReference snr_reference = SnrReference::kEarlyReverb;
   std::string write_wavs;                          // "" = pipes in wav.scp
   std::string pipe_program;                        // "" = wav-reverberate next to this program
   int num_threads = 1;
   // With write_wavs: recordings longer than this (s) are reverberated in passes over the file,
   // memory independent of their length, same wav (reverberate_stream.h); 0 = all of them.
   double max_in_memory_s = kDefaultMaxInMemoryDurationS;
+
+  // reverberate-data's options: Kaldi's reverberate_data_dir.py names and meanings, then tsrir's
+  // extensions (--random-seed also as --seed, the toolkit's name).
+  void Register(OptionsItf* opts);
 };
 
 struct ReverberateDataSummary {

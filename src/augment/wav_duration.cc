@@ -1,14 +1,17 @@
 #include "augment/wav_duration.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "io/audio_io.h"
 #include "io/kaldi_table.h"
 #include "io/rxfile.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/strings.h"
 
 namespace tsrir {
@@ -107,6 +110,11 @@ double rx_duration_s(const std::string& rx_in, bool read_entire_file, const std:
   }
 }
 
+void WavDurationOptions::Register(OptionsItf* opts) {
+  opts->Register("read-entire-file", &read_entire_file,
+                 "If true, decode every recording completely instead of reading file headers");
+}
+
 std::vector<RecordingDuration> wav_durations(const std::string& rspecifier, bool read_entire_file) {
   const KaldiSpecifier spec = parse_kaldi_specifier(rspecifier, "wav rspecifier");
   if (spec.type != "scp")
@@ -172,6 +180,24 @@ void write_duration_archive(const std::string& wspecifier, const std::vector<Rec
     std::remove(temp.c_str());
     throw Error(target + ": cannot rename into place: " + std::strerror(errno));
   }
+}
+
+int run_wav_to_duration(const WavDurationOptions& options, const std::string& rspecifier,
+                        const std::string& wspecifier) {
+  const std::vector<RecordingDuration> durations = wav_durations(rspecifier, options.read_entire_file);
+  write_duration_archive(wspecifier, durations);
+  double sum = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (const auto& d : durations) {
+    sum += d.duration_s;
+    lo = std::min<double>(lo, d.duration_s);
+    hi = std::max<double>(hi, d.duration_s);
+  }
+  const size_t done = durations.size();
+  log_info("Printed duration for " + std::to_string(done) + " audio files.");
+  if (done > 0)
+    log_info("Mean duration was " + std::to_string(sum / done) + ", min and max durations were " +
+             std::to_string(lo) + ", " + std::to_string(hi));
+  return done != 0 ? 0 : 1;  // Kaldi: 1 when nothing was written
 }
 
 }  // namespace tsrir

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "util/options.h"
+
 namespace tsrir {
 
 struct KaldiSpecifier {
@@ -32,6 +34,12 @@ std::optional<double> wav_header_duration_s(const std::vector<char>& bytes);
 // else by reading it to the end. `read_entire_file`: always decode to the end.
 double rx_duration_s(const std::string& rx, bool read_entire_file, const std::string& where);
 
+// wav-to-duration's options (Kaldi's).
+struct WavDurationOptions {
+  bool read_entire_file = false;  // decode every recording to the end instead of reading headers
+  void Register(OptionsItf* opts);
+};
+
 // Reads the scp (a wav.scp; "scp:" rspecifier only, as Kaldi's WaveHolder tables through scp).
 // Files: from the header (as Kaldi's WaveInfoHolder); pipes and "-": the whole stream is read.
 // With `read_entire_file` every recording is decoded completely. Errors name the scp line.
@@ -41,5 +49,10 @@ std::vector<RecordingDuration> wav_durations(const std::string& rspecifier, bool
 // binary "key \0B\4<float32>". Written to the wspecifier's file (atomically), stdout or a pipe.
 std::string format_duration_archive(const std::vector<RecordingDuration>& durations, bool text);
 void write_duration_archive(const std::string& wspecifier, const std::vector<RecordingDuration>& durations);
+
+// The wav-to-duration program: durations of `rspecifier`'s recordings written to `wspecifier`, and
+// Kaldi's summary log lines. Returns Kaldi's exit status: 0 when at least one was written, else 1.
+int run_wav_to_duration(const WavDurationOptions& options, const std::string& rspecifier,
+                        const std::string& wspecifier);
 
 }  // namespace tsrir

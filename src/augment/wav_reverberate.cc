@@ -4,11 +4,13 @@
 #include <memory>
 
 #include "augment/noise_signal.h"
+#include "augment/reverb_steps.h"
 #include "augment/reverberate_stream.h"
 #include "augment/temp_file.h"
 #include "augment/wav_sink.h"
 #include "io/audio_io.h"
-#include "util/cli.h"
+#include "io/rxfile.h"
+#include "util/log.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -38,6 +40,13 @@ void write_output(const std::string& wx, const std::vector<std::vector<float>>& 
   const size_t num_channels = channels.size();
   WavSink sink(wx, static_cast<int>(num_channels), frames, sample_rate_hz, SampleFormat::kInt16);
   constexpr size_t kBlockFrames = 16384;
+  if (num_channels == 1) {  // already "interleaved"
+    for (size_t start = 0; start < frames; start += kBlockFrames)
+      sink.write(channels[0].data() + start, std::min(kBlockFrames, frames - start));
+    sink.commit();
+    *clipped = sink.clipped_samples();
+    return;
+  }
   std::vector<float> block;
   for (size_t start = 0; start < frames; start += kBlockFrames) {
     const size_t n = std::min(kBlockFrames, frames - start);
@@ -51,6 +60,52 @@ void write_output(const std::string& wx, const std::vector<std::vector<float>>& 
 }
 
 }  // namespace
+
+void WavReverberateOptions::Register(OptionsItf* opts) {
+  opts->Register("multi-channel-output", &multi_channel_output,
+                 "One output channel per RIR channel (additive signals must have as many channels)");
+  opts->Register("input-wave-channel", &input_wave_channel, "Channel of the input used to make the output");
+  opts->Register("rir-channel", &rir_channel, "Channel of the RIR, used when --multi-channel-output=false");
+  opts->Register("noise-channel", &noise_channel,
+                 "Channel of the additive signals, used when --multi-channel-output=false");
+  opts->Register("impulse-response", &impulse_response,
+                 "rxfilename of the room impulse response (file, 'command |' or -); empty = no reverberation");
+  opts->Register("additive-signals", &additive_signals, "Comma-separated list of additive signals (rxfilenames)");
+  opts->Register("snrs", &snrs, "Comma-separated SNRs in dB, one per additive signal");
+  opts->Register("start-times", &start_times,
+                 "Comma-separated start times in seconds, one per additive signal, into the reverberant input; "
+                 "a start beyond its end adds nothing");
+  reverb.Register(opts);
+  opts->Register("volume", &reverb.volume, "If > 0, a gain applied instead of --normalize-output");
+  opts->Register("duration", &reverb.duration_s,
+                 "If > 0, output duration in seconds: trimmed if shorter, tiled (repeated) if longer");
+  opts->Register("additive-offsets", &additive_offsets,
+                 "tsrir extension: comma-separated positions (s) in each additive signal where reading starts "
+                 "(rounded to the nearest sample); empty = 0 for all");
+  opts->Register("loop-additive-signals", &reverb.loop_additive_signals,
+                 "tsrir extension: tile each additive signal from its offset to the end of the reverberant signal; "
+                 "its power for the SNR is then measured over exactly the samples added");
+  opts->Register("additive-loops", &additive_loops,
+                 "tsrir extension: comma-separated true/false, one per additive signal: loop that signal as "
+                 "--loop-additive-signals does for all");
+  opts->Register("additive-impulse-responses", &additive_impulse_responses,
+                 "tsrir extension: comma-separated RIR rxfilenames, one field per additive signal (empty = none): "
+                 "that signal is first reverberated as Kaldi's nested `wav-reverberate --impulse-response=<rir> "
+                 "<signal> -` would, in this process");
+  opts->Register("additive-durations", &additive_durations,
+                 "tsrir extension: comma-separated durations (s), one per additive signal (0 = as is): that signal "
+                 "is first repeated or cut to it as Kaldi's nested `wav-reverberate --duration=<s>` would");
+  opts->Register("kaldi-compat", &reverb.kaldi_compat,
+                 "tsrir extension: reproduce the output of Kaldi's wav-reverberate sample for sample (up to float "
+                 "rounding), its defects included: the error of its FFT block convolution (its DC and Nyquist "
+                 "bins are multiplied as one complex number), 16-bit output truncated instead of rounded, and with "
+                 "--shift-output=false the reverberant tail replaced by the first samples; the input is then "
+                 "always held in memory, as Kaldi does");
+  opts->Register("max-in-memory-duration", &max_in_memory_s,
+                 "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
+                 "with memory independent of their length (same output; a piped input is first copied to a "
+                 "temporary file, as is the unscaled output: next to a file output, else in $TMPDIR); 0 = always");
+}
 
 std::vector<std::vector<float>> read_channels_at_rate(const std::string& rx, double sample_rate_hz,
                                                       const std::string& context) {
@@ -77,12 +132,13 @@ struct OutputChannelSetup {
 };
 
 // Kaldi's channel rules (--multi-channel-output, --rir-channel, --noise-channel), shared by the
-// in-memory and the streaming path.
+// in-memory and the streaming path. The additive channels used are moved into the setups (each
+// output channel takes its own channel of each signal).
 std::vector<OutputChannelSetup> setup_output_channels(
     double sample_rate_hz, const std::vector<std::vector<float>>& rir_channels,
-    const std::vector<std::vector<std::vector<float>>>& additive_channels, const std::vector<double>& snrs_db,
+    std::vector<std::vector<std::vector<float>>> additive_channels, const std::vector<double>& snrs_db,
     const std::vector<double>& start_times_s, const std::vector<double>& offsets_s,
-    const WavReverberateConfig& config) {
+    const WavReverberateOptions& config) {
   const bool have_rir = !rir_channels.empty();
   const size_t num_out = (config.multi_channel_output && have_rir) ? rir_channels.size() : 1;
   if (config.multi_channel_output && config.rir_channel != 0)
@@ -113,8 +169,9 @@ std::vector<OutputChannelSetup> setup_output_channels(
     additive.resize(additive_channels.size());
     for (size_t i = 0; i < additive_channels.size(); ++i) {
       const int noise_index = (config.multi_channel_output && have_rir) ? static_cast<int>(c) : config.noise_channel;
+      channel_of(additive_channels[i], noise_index, "additive signal " + std::to_string(i + 1));  // checks
       additive[i].samples = std::make_shared<const std::vector<float>>(
-          channel_of(additive_channels[i], noise_index, "additive signal " + std::to_string(i + 1)));
+          std::move(additive_channels[i][static_cast<size_t>(noise_index)]));
       additive[i].snr_db = snrs_db.at(i);
       additive[i].start_time_s = start_times_s.at(i);
       additive[i].offset_s = offsets_s.empty() ? 0.0 : offsets_s.at(i);
@@ -124,6 +181,20 @@ std::vector<OutputChannelSetup> setup_output_channels(
   return setups;
 }
 
+std::vector<std::vector<float>> reverberate_in_memory(
+    const std::vector<std::vector<float>>& input_channels, double sample_rate_hz,
+    const std::vector<std::vector<float>>& rir_channels, std::vector<std::vector<std::vector<float>>> additive_channels,
+    const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
+    const std::vector<double>& offsets_s, const WavReverberateOptions& config) {
+  const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
+  const std::vector<OutputChannelSetup> setups = setup_output_channels(
+      sample_rate_hz, rir_channels, std::move(additive_channels), snrs_db, start_times_s, offsets_s, config);
+  std::vector<std::vector<float>> outputs(setups.size());
+  for (size_t c = 0; c < setups.size(); ++c)
+    outputs[c] = reverberate_channel(input, sample_rate_hz, setups[c].rir.get(), setups[c].additive, config.reverb);
+  return outputs;
+}
+
 }  // namespace
 
 std::vector<std::vector<float>> wav_reverberate_channels(
@@ -131,17 +202,12 @@ std::vector<std::vector<float>> wav_reverberate_channels(
     const std::vector<std::vector<float>>& rir_channels,
     const std::vector<std::vector<std::vector<float>>>& additive_channels,
     const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
-    const std::vector<double>& offsets_s, const WavReverberateConfig& config) {
-  const std::vector<float>& input = channel_of(input_channels, config.input_wave_channel, "input");
-  const std::vector<OutputChannelSetup> setups = setup_output_channels(
-      sample_rate_hz, rir_channels, additive_channels, snrs_db, start_times_s, offsets_s, config);
-  std::vector<std::vector<float>> outputs(setups.size());
-  for (size_t c = 0; c < setups.size(); ++c)
-    outputs[c] = reverberate_channel(input, sample_rate_hz, setups[c].rir.get(), setups[c].additive, config.reverb);
-  return outputs;
+    const std::vector<double>& offsets_s, const WavReverberateOptions& config) {
+  return reverberate_in_memory(input_channels, sample_rate_hz, rir_channels, additive_channels, snrs_db,
+                               start_times_s, offsets_s, config);
 }
 
-long long run_wav_reverberate(const WavReverberateConfig& config, const std::string& input_rx,
+long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
                               const std::string& output_wx) {
   const std::vector<std::string> additive_rx = split_comma_list(config.additive_signals);
   const std::vector<double> snrs = parse_number_list(config.snrs, "snrs");
@@ -160,8 +226,10 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
     throw Error("--additive-offsets given without --additive-signals");
   }
 
+  // Kaldi's numerics are those of its whole-signal computation: no passes over the file.
+  const double max_in_memory_s = config.reverb.kaldi_compat ? 1e300 : config.max_in_memory_s;
   SpeechInput input =
-      open_speech_input(input_rx, config.max_in_memory_s, temp_base_for_output(output_wx, "input"), "input");
+      open_speech_input(input_rx, max_in_memory_s, temp_base_for_output(output_wx, "input"), "input");
   const double fs = input.on_disk() ? probe_audio(input.path).sample_rate_hz : input.info.sample_rate_hz;
 
   // Kaldi never checks the RIR's rate; applying a 48 kHz RIR to 16 kHz speech sample by sample
@@ -192,13 +260,28 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
     // As the nested program: the noise at its own rate (its first channel), the RIR at that rate,
     // 16-bit result, then resampled to the speech's rate as the outer program would.
     AudioInfo info;
-    std::vector<std::vector<float>> noise = read_audio_channels(additive_rx[i], &info, "--additive-signals");
+    size_t needed = static_cast<size_t>(-1);
+    if (rir_rx.empty()) {
+      // Only the first int(fs * duration) samples matter then (noise_signal.h): a 30 s noise file
+      // cut to a 10 s utterance is read that far. An unreadable file is left to the read below,
+      // which reports it.
+      const std::string t = trim(additive_rx[i]);
+      try {
+        if (t != "-" && !is_pipe_rxfilename(t))
+          needed = kaldi_duration_samples(probe_audio(t).sample_rate_hz, static_cast<float>(duration));
+      } catch (const Error&) {
+      }
+    }
+    std::vector<std::vector<float>> noise =
+        read_audio_channels_prefix(additive_rx[i], needed, &info, "--additive-signals");
     std::unique_ptr<PreparedRir> rir;
     if (!rir_rx.empty())
       rir = std::make_unique<PreparedRir>(
           read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
           info.sample_rate_hz);
-    std::vector<float> signal = nested_noise_signal(noise.at(0), info.sample_rate_hz, rir.get(), duration);
+    std::vector<float> signal =
+        nested_noise_signal(std::move(noise.at(0)), info.sample_rate_hz, rir.get(), duration, info.int16_samples,
+                            config.reverb.kaldi_compat);
     if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
     additive.push_back({std::move(signal)});
   }
@@ -206,13 +289,18 @@ long long run_wav_reverberate(const WavReverberateConfig& config, const std::str
   size_t total = 0;
   if (!input.on_disk()) {
     std::vector<std::vector<float>> output =
-        wav_reverberate_channels(input.channels, fs, rir, additive, snrs, start_times, offsets, config);
+        reverberate_in_memory(input.channels, fs, rir, std::move(additive), snrs, start_times, offsets, config);
     input.channels.clear();
+    // Kaldi truncates toward zero (the writer would round): done first, the writer then keeps it.
+    long long truncated_clipped = 0;
+    if (config.reverb.kaldi_compat)
+      for (auto& channel : output) truncated_clipped += kaldi_truncate_to_int16(&channel);
     write_output(output_wx, output, fs, &clipped);
+    clipped += truncated_clipped;
     total = output.size() * output[0].size();
   } else {
     const std::vector<OutputChannelSetup> setups =
-        setup_output_channels(fs, rir, additive, snrs, start_times, offsets, config);
+        setup_output_channels(fs, rir, std::move(additive), snrs, start_times, offsets, config);
     std::vector<StreamChannel> channels(setups.size());
     for (size_t c = 0; c < setups.size(); ++c) {
       channels[c].rir = setups[c].rir.get();

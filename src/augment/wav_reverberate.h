@@ -7,10 +7,11 @@
 
 #include "augment/reverberate.h"
 #include "augment/speech_input.h"
+#include "util/options.h"
 
 namespace tsrir {
 
-struct WavReverberateConfig {
+struct WavReverberateOptions {
   std::string impulse_response;     // rxfilename, "" = none
   std::string additive_signals;     // comma-separated rxfilenames
   std::string snrs;                 // comma-separated dB
@@ -29,6 +30,11 @@ struct WavReverberateConfig {
   // Inputs longer than this (s) are reverberated in passes over the file, with memory bounded
   // independently of their length and the same output (reverberate_stream.h); 0 = every input.
   double max_in_memory_s = kDefaultMaxInMemoryDurationS;
+
+  // Kaldi's names and meanings (its script writes them), then tsrir's extensions. Kaldi's
+  // --volume and --duration go to reverb (ReverbOptions registers the options reverberate-data
+  // shares: --shift-output, --normalize-output, --snr-reference).
+  void Register(OptionsItf* opts);
 };
 
 // All channels of an rxfilename, resampled (libsox) to `sample_rate_hz` when their rate differs.
@@ -44,7 +50,7 @@ std::vector<std::string> split_comma_list(const std::string& text);
 // option or file. Returns the number of clipped samples (also logged as a warning). An input
 // longer than config.max_in_memory_s is streamed; its temporaries go next to a file output,
 // else to $TMPDIR (default /tmp), and are removed on success, error and interruption.
-long long run_wav_reverberate(const WavReverberateConfig& config, const std::string& input_rx,
+long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
                               const std::string& output_wx);
 
 // The same, in memory: channels in, channels out (used by reverberate-data's materialised mode
@@ -54,6 +60,6 @@ std::vector<std::vector<float>> wav_reverberate_channels(
     const std::vector<std::vector<float>>& rir_channels,
     const std::vector<std::vector<std::vector<float>>>& additive_channels,
     const std::vector<double>& snrs_db, const std::vector<double>& start_times_s,
-    const std::vector<double>& offsets_s, const WavReverberateConfig& config);
+    const std::vector<double>& offsets_s, const WavReverberateOptions& config);
 
 }  // namespace tsrir

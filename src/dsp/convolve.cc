@@ -11,6 +11,18 @@ namespace {
 // Below this many multiply-adds, direct convolution beats the FFT's fixed costs.
 constexpr size_t kDirectWorkLimit = 4096 * 8;
 
+// X[k] *= H[k] for every bin, as (a c - b d, a d + b c): what std::complex's operator*= computes
+// for finite values, without its NaN-recovery branch (spectra of finite signals are finite).
+void multiply_spectra(std::complex<float>* X, const std::complex<float>* H, size_t bins) {
+  float* x = reinterpret_cast<float*>(X);
+  const float* h = reinterpret_cast<const float*>(H);
+  for (size_t k = 0; k < bins; ++k) {
+    const float a = x[2 * k], b = x[2 * k + 1], c = h[2 * k], d = h[2 * k + 1];
+    x[2 * k] = a * c - b * d;
+    x[2 * k + 1] = a * d + b * c;
+  }
+}
+
 std::vector<float> direct_float(const std::vector<float>& x, const std::vector<float>& h) {
   std::vector<float> y(x.size() + h.size() - 1, 0.0f);
   for (size_t k = 0; k < h.size(); ++k) {
@@ -51,21 +63,36 @@ Convolver::Convolver(const std::vector<float>& h) : m_(h.size()) {
 std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
   if (x.empty()) return {};
   if (!h_direct_.empty()) return direct_float(x, h_direct_);
+  std::vector<float> y(x.size() + m_ - 1);
+  convolve_blocks(x, [&y](size_t first, const float* values, size_t count) {
+    std::copy(values, values + count, y.begin() + static_cast<long>(first));
+  });
+  return y;
+}
+
+void Convolver::convolve_blocks(const std::vector<float>& x,
+                                const std::function<void(size_t, const float*, size_t)>& sink) const {
+  if (x.empty()) return;
+  if (!h_direct_.empty()) {
+    const std::vector<float> y = direct_float(x, h_direct_);
+    sink(0, y.data(), y.size());
+    return;
+  }
   const size_t out_len = x.size() + m_ - 1;
   const size_t n = fft_size_;
   RealFft fft(n);
   const float scale = 1.0f / static_cast<float>(n);
-  std::vector<float> y(out_len);
   std::vector<std::complex<float>> X(fft.num_bins());
   // The whole output fits one transform: no aliasing, one forward and one inverse FFT.
   if (out_len <= n) {
     std::vector<float> buf(n, 0.0f);
     std::copy(x.begin(), x.end(), buf.begin());
     fft.forward(buf.data(), X.data());
-    for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
-    fft.inverse(X.data(), buf.data());
-    for (size_t i = 0; i < out_len; ++i) y[i] = buf[i] * scale;
-    return y;
+    multiply_spectra(X.data(), h_spectrum_.data(), X.size());
+    fft.inverse_in_place(X.data(), buf.data());
+    for (size_t i = 0; i < out_len; ++i) buf[i] *= scale;
+    sink(0, buf.data(), out_len);
+    return;
   }
   // Overlap-save: input segment j covers x[j*B - (M-1) .. j*B + B - 1]; the first M-1 outputs of
   // each circular convolution are aliased and dropped.
@@ -80,12 +107,13 @@ std::vector<float> Convolver::convolve(const std::vector<float>& x) const {
     std::fill(seg.begin(), seg.end(), 0.0f);
     if (hi > lo) std::copy(x.begin() + lo, x.begin() + hi, seg.begin() + (lo - seg_start));
     fft.forward(seg.data(), X.data());
-    for (size_t k = 0; k < X.size(); ++k) X[k] *= h_spectrum_[k];
-    fft.inverse(X.data(), res.data());
+    multiply_spectra(X.data(), h_spectrum_.data(), X.size());
+    fft.inverse_in_place(X.data(), res.data());
     const size_t count = std::min(block_, out_len - start);
-    for (size_t i = 0; i < count; ++i) y[start + i] = res[m_ - 1 + i] * scale;
+    float* out = res.data() + (m_ - 1);
+    for (size_t i = 0; i < count; ++i) out[i] *= scale;
+    sink(start, out, count);
   }
-  return y;
 }
 
 std::vector<float> fft_convolve(const std::vector<float>& x, const std::vector<float>& h) {

@@ -2,6 +2,7 @@
 // Full linear convolution: y has length N + M - 1, y[n] = sum_k h[k] x[n-k].
 #pragma once
 #include <complex>
+#include <functional>
 #include <vector>
 
 namespace tsrir {
@@ -20,6 +21,10 @@ class Convolver {
   // pieces starting on multiples of it gets the same rounding as one whole-signal call.
   size_t block_length() const { return block_; }
   std::vector<float> convolve(const std::vector<float>& x) const;  // full, N + M - 1
+  // The same values, delivered in order a block at a time without holding the whole output:
+  // sink(first_index, values, count) for consecutive stretches covering [0, N + M - 1).
+  void convolve_blocks(const std::vector<float>& x,
+                       const std::function<void(size_t, const float*, size_t)>& sink) const;
 
  private:
   size_t m_, fft_size_, block_;

@@ -7,15 +7,19 @@
 #include <memory>
 #include <mutex>
 
+#include "dsp/fft_plan_pair.h"
 #include "util/error.h"
 
 namespace tsrir {
-namespace {
 
-struct PlanPair {
-  fftwf_plan forward;
-  fftwf_plan inverse;
+// fftw_wisdom_data.cc, generated: wisdom per power-of-two size, ended by {0, nullptr}.
+struct FftwWisdomEntry {
+  size_t size;
+  const char* wisdom;
 };
+extern const FftwWisdomEntry kFftwWisdom[];
+
+namespace {
 
 // FFTW's planner is not thread-safe; execution of an existing plan on new arrays is.
 std::mutex g_plan_mutex;
@@ -29,13 +33,11 @@ PlanPair get_plans(size_t n) {
   auto& cache = plan_cache();
   auto it = cache.find(n);
   if (it != cache.end()) return it->second;
-  float* in = fftwf_alloc_real(n);
-  fftwf_complex* out = fftwf_alloc_complex(n / 2 + 1);
-  PlanPair p;
-  p.forward = fftwf_plan_dft_r2c_1d(static_cast<int>(n), in, out, FFTW_ESTIMATE);
-  p.inverse = fftwf_plan_dft_c2r_1d(static_cast<int>(n), out, in, FFTW_ESTIMATE);
-  fftwf_free(in);
-  fftwf_free(out);
+  // The build machine's wisdom for this size (dsp/wisdom/fftw_wisdom_gen.cc), if any: FFTW takes
+  // all of the entry or, if it does not fit this FFTW or this CPU, none (the plan is then searched).
+  for (const FftwWisdomEntry* w = kFftwWisdom; w->wisdom; ++w)
+    if (w->size == n) fftwf_import_wisdom_from_string(w->wisdom);
+  PlanPair p = make_plan_pair(n);
   if (!p.forward || !p.inverse) throw Error("FFTW: cannot plan a transform of size " + std::to_string(n));
   cache.emplace(n, p);
   return p;
@@ -115,6 +117,19 @@ void RealFft::inverse(const std::complex<float>* in, float* out) const {
   const size_t bins = n_ / 2 + 1;
   fftwf_complex* src = t_scratch.complexes(bins);
   std::memcpy(static_cast<void*>(src), static_cast<const void*>(in), bins * sizeof(fftwf_complex));
+  float* dst = out;
+  const bool direct_out = simd_aligned(out);
+  if (!direct_out) dst = t_scratch.reals(n_);
+  fftwf_execute_dft_c2r(static_cast<fftwf_plan>(plan_inverse_), src, dst);
+  if (!direct_out) std::memcpy(out, dst, n_ * sizeof(float));
+}
+
+void RealFft::inverse_in_place(std::complex<float>* in, float* out) const {
+  auto* src = reinterpret_cast<fftwf_complex*>(in);
+  if (!simd_aligned(in)) {
+    inverse(in, out);
+    return;
+  }
   float* dst = out;
   const bool direct_out = simd_aligned(out);
   if (!direct_out) dst = t_scratch.reals(n_);

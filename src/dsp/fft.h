@@ -1,6 +1,7 @@
 // FFTW3 single-precision real FFTs. Plans are created once per size (FFTW_ESTIMATE: planning a
 // 2^20 transform with FFTW_MEASURE costs ~10 s) under a global lock, then shared by all threads
-// through fftwf_execute_dft_r2c/c2r on per-call buffers.
+// through fftwf_execute_dft_r2c/c2r on per-call buffers. Power-of-two plans are looked up in wisdom
+// made at build time (dsp/wisdom/fftw_wisdom_gen.cc): the same plans, without the search.
 #pragma once
 #include <complex>
 #include <cstddef>
@@ -20,6 +21,9 @@ class RealFft {
   void forward(const float* in, std::complex<float>* out) const;
   // Unnormalised inverse: forward then inverse multiplies by n.
   void inverse(const std::complex<float>* in, float* out) const;
+  // The same values, using `in` as FFTW's work space (it is overwritten): one copy less per call,
+  // for callers that recompute the spectrum each time.
+  void inverse_in_place(std::complex<float>* in, float* out) const;
 
  private:
   size_t n_;

@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "io/rxfile.h"
+#include "io/sndfile_api.h"
+#include "io/wav_reader.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -50,9 +52,9 @@ std::string format_name(int format) {
   SF_FORMAT_INFO info;
   std::string out;
   info.format = format & SF_FORMAT_TYPEMASK;
-  if (sf_command(nullptr, SFC_GET_FORMAT_INFO, &info, sizeof info) == 0) out = info.name;
+  if (sndfile().command(nullptr, SFC_GET_FORMAT_INFO, &info, sizeof info) == 0) out = info.name;
   info.format = format & SF_FORMAT_SUBMASK;
-  if (sf_command(nullptr, SFC_GET_FORMAT_INFO, &info, sizeof info) == 0) out += std::string(" ") + info.name;
+  if (sndfile().command(nullptr, SFC_GET_FORMAT_INFO, &info, sizeof info) == 0) out += std::string(" ") + info.name;
   return out;
 }
 
@@ -62,7 +64,7 @@ std::string format_name(int format) {
 // 0xFFFFFFFF): like Kaldi's wave reader, those mean "read to the end of the stream".
 void check_header_sizes(SNDFILE* f, const std::string& name) {
   char log[8192];
-  sf_command(f, SFC_GET_LOG_INFO, log, sizeof log);
+  sndfile().command(f, SFC_GET_LOG_INFO, log, sizeof log);
   std::istringstream log_lines(log);
   for (std::string line; std::getline(log_lines, line);) {
     if (starts_with(line, "data") && line.find("should be") != std::string::npos) {
@@ -101,11 +103,11 @@ std::vector<std::vector<float>> read_all(SNDFILE* f, const SF_INFO& info, const 
   for (;;) {
     const size_t old = interleaved.size();
     interleaved.resize(old + static_cast<size_t>(block_frames) * ch);
-    sf_count_t got = sf_readf_float(f, interleaved.data() + old, block_frames);
+    sf_count_t got = sndfile().readf_float(f, interleaved.data() + old, block_frames);
     interleaved.resize(old + static_cast<size_t>(std::max<sf_count_t>(got, 0)) * ch);
     if (got <= 0) break;
   }
-  if (sf_error(f) != SF_ERR_NO_ERROR) throw Error(name + ": cannot decode audio: " + sf_strerror(f));
+  if (sndfile().error(f) != SF_ERR_NO_ERROR) throw Error(name + ": cannot decode audio: " + sndfile().strerror(f));
   const size_t frames = interleaved.size() / ch;
   if (frames == 0) throw Error(name + ": zero-length audio");
   if (static_cast<sf_count_t>(frames) < info.frames) {
@@ -130,6 +132,7 @@ void fill_info(const SF_INFO& sf, AudioInfo* info) {
   info->channels = sf.channels;
   info->frames = sf.frames;
   info->format = format_name(sf.format);
+  info->int16_samples = (sf.format & SF_FORMAT_SUBMASK) == SF_FORMAT_PCM_16;
 }
 
 Signal select_channel(std::vector<std::vector<float>>&& channels, double rate, const AudioReadOptions& o,
@@ -162,7 +165,7 @@ Signal select_channel(std::vector<std::vector<float>>&& channels, double rate, c
 }
 
 struct SndFileCloser {
-  void operator()(SNDFILE* f) const { sf_close(f); }
+  void operator()(SNDFILE* f) const { sndfile().close(f); }
 };
 using SndFile = std::unique_ptr<SNDFILE, SndFileCloser>;
 
@@ -170,18 +173,34 @@ using SndFile = std::unique_ptr<SNDFILE, SndFileCloser>;
 // reason; one that libsndfile cannot decode gets libsndfile's.
 SndFile open_for_reading(const std::string& path, SF_INFO* sf, const std::string& name) {
   *sf = SF_INFO{};
-  SndFile f(sf_open(path.c_str(), SFM_READ, sf));
+  SndFile f(sndfile().open(path.c_str(), SFM_READ, sf));
   if (!f) {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) throw Error(name + ": cannot open: " + std::strerror(errno));
-    throw Error(name + ": unreadable or unsupported audio: " + sf_strerror(nullptr));
+    throw Error(name + ": unreadable or unsupported audio: " + sndfile().strerror(nullptr));
   }
   return f;
+}
+
+void fill_info(const PlainWavLayout& layout, AudioInfo* info) {
+  if (!info) return;
+  info->sample_rate_hz = layout.sample_rate_hz;
+  info->channels = layout.channels;
+  info->frames = static_cast<long long>(layout.frames);
+  info->format = layout.format_name();
+  info->int16_samples = layout.bits == 16 && !layout.is_float;
 }
 
 }  // namespace
 
 AudioInfo probe_audio(const std::string& path) {
+  MappedFile mapped;
+  PlainWavLayout layout;
+  if (mapped.open(path) && parse_plain_wav(mapped.data(), mapped.size(), &layout)) {
+    AudioInfo info;
+    fill_info(layout, &info);
+    return info;
+  }
   SF_INFO sf{};
   open_for_reading(path, &sf, path);
   AudioInfo info;
@@ -192,11 +211,18 @@ AudioInfo probe_audio(const std::string& path) {
 std::vector<std::vector<float>> decode_audio_bytes(const std::vector<char>& bytes, AudioInfo* info,
                                                    const std::string& name) {
   if (bytes.empty()) throw Error(name + ": empty input (no audio data)");
+  PlainWavLayout layout;
+  if (parse_plain_wav(bytes.data(), bytes.size(), &layout)) {
+    std::vector<std::vector<float>> channels;
+    decode_plain_wav(bytes.data(), layout, 0, layout.frames, name, &channels);
+    fill_info(layout, info);
+    return channels;
+  }
   MemoryFile mem{&bytes, 0};
   SF_VIRTUAL_IO vio{mem_len, mem_seek, mem_read, mem_write, mem_tell};
   SF_INFO sf{};
-  SndFile f(sf_open_virtual(&vio, SFM_READ, &sf, &mem));
-  if (!f) throw Error(name + ": unreadable or unsupported audio: " + sf_strerror(nullptr));
+  SndFile f(sndfile().open_virtual(&vio, SFM_READ, &sf, &mem));
+  if (!f) throw Error(name + ": unreadable or unsupported audio: " + sndfile().strerror(nullptr));
   auto channels = read_all(f.get(), sf, name);
   fill_info(sf, info);
   return channels;
@@ -204,14 +230,36 @@ std::vector<std::vector<float>> decode_audio_bytes(const std::vector<char>& byte
 
 std::vector<std::vector<float>> read_audio_channels(const std::string& rx, AudioInfo* info,
                                                     const std::string& context) {
+  return read_audio_channels_prefix(rx, static_cast<size_t>(-1), info, context);
+}
+
+std::vector<std::vector<float>> read_audio_channels_prefix(const std::string& rx, size_t max_frames, AudioInfo* info,
+                                                           const std::string& context) {
   const std::string name = name_of(rx, context);
   std::string t = trim(rx);
-  if (t == "-" || is_pipe_rxfilename(t)) return decode_audio_bytes(read_rxfile(rx, context), info, name);
+  auto cut = [max_frames](std::vector<std::vector<float>> channels) {
+    for (auto& c : channels)
+      if (c.size() > max_frames) c.resize(max_frames);
+    return channels;
+  };
+  if (t == "-" || is_pipe_rxfilename(t)) return cut(decode_audio_bytes(read_rxfile(rx, context), info, name));
+  {
+    MappedFile mapped;
+    PlainWavLayout layout;
+    if (mapped.open(rx) && parse_plain_wav(mapped.data(), mapped.size(), &layout)) {
+      // Integer samples cannot be NaN or Inf: a prefix needs no look at the rest.
+      const size_t count = layout.is_float ? layout.frames : std::min(layout.frames, max_frames);
+      std::vector<std::vector<float>> channels;
+      decode_plain_wav(mapped.data(), layout, 0, count, name, &channels);
+      fill_info(layout, info);
+      return cut(std::move(channels));
+    }
+  }
   SF_INFO sf{};
   const SndFile f = open_for_reading(rx, &sf, name);
   auto channels = read_all(f.get(), sf, name);
   fill_info(sf, info);
-  return channels;
+  return cut(std::move(channels));
 }
 
 struct AudioFileReader::SoundFile {
@@ -235,10 +283,11 @@ size_t AudioFileReader::read(std::vector<float>* interleaved, size_t max_frames)
   SNDFILE* f = file_->handle.get();
   const size_t ch = static_cast<size_t>(info_.channels);
   interleaved->resize(max_frames * ch);
-  const sf_count_t got = max_frames ? sf_readf_float(f, interleaved->data(), static_cast<sf_count_t>(max_frames)) : 0;
+  const sf_count_t got =
+      max_frames ? sndfile().readf_float(f, interleaved->data(), static_cast<sf_count_t>(max_frames)) : 0;
   const size_t frames = static_cast<size_t>(std::max<sf_count_t>(got, 0));
   interleaved->resize(frames * ch);
-  if (sf_error(f) != SF_ERR_NO_ERROR) throw Error(name_ + ": cannot decode audio: " + sf_strerror(f));
+  if (sndfile().error(f) != SF_ERR_NO_ERROR) throw Error(name_ + ": cannot decode audio: " + sndfile().strerror(f));
   check_finite(interleaved->data(), interleaved->size(), info_.channels, frames_read_, name_);
   frames_read_ += static_cast<long long>(frames);
   if (frames == 0 && max_frames > 0) {

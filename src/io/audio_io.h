@@ -1,5 +1,6 @@
-// Audio files in: libsndfile decodes (WAV, FLAC, Ogg Vorbis, ... any rate, any channel count,
-// int16/24/32/float); resampling on request (io/resampler.h). Writing WAVs: io/wav_writer.h (both
+// Audio files in: plain WAV (16/24/32-bit PCM, float) by io/wav_reader.h, everything else (FLAC,
+// Ogg Vorbis, ... any rate, any channel count) by libsndfile, loaded when first needed
+// (io/sndfile_api.h); resampling on request (io/resampler.h). Writing WAVs: io/wav_writer.h (both
 // headers are included here for the callers of this one).
 #pragma once
 #include <memory>
@@ -22,7 +23,8 @@ struct AudioInfo {
   double sample_rate_hz = 0.0;
   int channels = 0;
   long long frames = 0;
-  std::string format;            // e.g. "WAV PCM_16"
+  std::string format;            // e.g. "WAV (Microsoft) Signed 16 bit PCM"
+  bool int16_samples = false;    // 16-bit PCM: every sample is exactly s / 32768 for an integer s
 };
 
 // Reads an rxfilename (path, "-", or "cmd |"). Errors (each names the file and context): missing
@@ -32,6 +34,12 @@ Signal read_audio(const std::string& rx, const AudioReadOptions& options = {});
 // All channels, de-interleaved: result[c][n].
 std::vector<std::vector<float>> read_audio_channels(const std::string& rx, AudioInfo* info,
                                                     const std::string& context = "");
+// The first `max_frames` frames of every channel (all of them when the file is shorter), for a
+// caller that uses only a prefix; info->frames is still the whole length. A plain integer-PCM WAV
+// file (io/wav_reader.h) is decoded only that far; any other input is decoded whole, so every check
+// of a whole read still applies to it.
+std::vector<std::vector<float>> read_audio_channels_prefix(const std::string& rx, size_t max_frames, AudioInfo* info,
+                                                           const std::string& context = "");
 // Decodes an in-memory file (used for pipes and stdin; also the fuzzing entry point).
 std::vector<std::vector<float>> decode_audio_bytes(const std::vector<char>& bytes, AudioInfo* info,
                                                    const std::string& name);

@@ -1,13 +1,12 @@
 #include "io/resampler.h"
 
-#include <sox.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <mutex>
 
+#include "io/sox_api.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -60,14 +59,14 @@ void init_sox() {
   static std::once_flag once;
   static bool ok = false;
   std::call_once(once, [] {
-    ok = sox_init() == SOX_SUCCESS;
-    if (ok) sox_globals.verbosity = 1;
+    ok = sox().init() == SOX_SUCCESS;
+    if (ok) sox().get_globals()->verbosity = 1;
   });
   if (!ok) throw Error("cannot initialise libsox");
 }
 
 struct ChainDeleter {
-  void operator()(sox_effects_chain_t* c) const { sox_delete_effects_chain(c); }
+  void operator()(sox_effects_chain_t* c) const { sox().delete_effects_chain(c); }
 };
 // sox_add_effect copies the effect; the caller still frees the one it created.
 struct EffectDeleter {
@@ -77,14 +76,14 @@ using Effect = std::unique_ptr<sox_effect_t, EffectDeleter>;
 
 Effect make_effect(const sox_effect_handler_t* handler, const char* what) {
   if (!handler) throw Error(std::string("libsox: no '") + what + "' effect");
-  Effect e(sox_create_effect(handler));
+  Effect e(sox().create_effect(handler));
   if (!e) throw Error(std::string("libsox: cannot create the '") + what + "' effect");
   return e;
 }
 
 void add_effect(sox_effects_chain_t* chain, const Effect& e, sox_signalinfo_t* in, const sox_signalinfo_t* out,
                 const char* what) {
-  if (sox_add_effect(chain, e.get(), in, out) != SOX_SUCCESS) {
+  if (sox().add_effect(chain, e.get(), in, out) != SOX_SUCCESS) {
     throw Error(std::string("libsox: cannot add the '") + what + "' effect");
   }
 }
@@ -113,7 +112,7 @@ std::vector<float> resample(const std::vector<float>& samples, double from_hz, d
   sox_encodinginfo_t enc{};
   enc.encoding = SOX_ENCODING_SIGN2;
   enc.bits_per_sample = 32;
-  std::unique_ptr<sox_effects_chain_t, ChainDeleter> chain(sox_create_effects_chain(&enc, &enc));
+  std::unique_ptr<sox_effects_chain_t, ChainDeleter> chain(sox().create_effects_chain(&enc, &enc));
   if (!chain) throw Error("libsox: cannot create an effects chain");
   sox_signalinfo_t interm = in_sig;
 
@@ -121,17 +120,17 @@ std::vector<float> resample(const std::vector<float>& samples, double from_hz, d
   *static_cast<SoxSource**>(source->priv) = &src;
   add_effect(chain.get(), source, &interm, &in_sig, "source");
 
-  Effect rate = make_effect(sox_find_effect("rate"), "rate");
+  Effect rate = make_effect(sox().find_effect("rate"), "rate");
   char opt_v[] = "-v";
   char* args[] = {opt_v};
-  if (sox_effect_options(rate.get(), 1, args) != SOX_SUCCESS) throw Error("libsox: bad rate options");
+  if (sox().effect_options(rate.get(), 1, args) != SOX_SUCCESS) throw Error("libsox: bad rate options");
   add_effect(chain.get(), rate, &interm, &out_sig, "rate");
 
   Effect sink_effect = make_effect(sink_handler(), "sink");
   *static_cast<SoxSink**>(sink_effect->priv) = &sink;
   add_effect(chain.get(), sink_effect, &interm, &out_sig, "sink");
 
-  const int status = sox_flow_effects(chain.get(), nullptr, nullptr);
+  const int status = sox().flow_effects(chain.get(), nullptr, nullptr);
   if (status != SOX_SUCCESS) {
     throw Error("libsox: resampling " + format_double(from_hz) + " Hz to " + format_double(to_hz) + " Hz failed");
   }

@@ -20,21 +20,32 @@ void put_u16(std::vector<char>& b, uint16_t v) {
   b.push_back(static_cast<char>(v >> 8));
 }
 
-// One sample; returns false for NaN/Inf (nothing appended).
-inline bool put_sample(std::vector<char>& b, float v, bool is_float, long long* clipped) {
+// std::nearbyint (round half to even) wherever the result survives the clip to [-32768, 32767]:
+// adding and removing 1.5 * 2^23 leaves the float's integer part rounded half to even, exactly, for
+// |x| < 2^22; larger values are clipped anyway. Inline, where nearbyintf is a libm call per sample
+// without SSE4.1 (the build targets plain x86-64). (The sign of a zero is lost: it writes 0 anyway.)
+inline float round_to_int16_range(float x) {
+  constexpr float kMagic = 12582912.0f;  // 1.5 * 2^23
+  return std::fabs(x) < 4194304.0f ? (x + kMagic) - kMagic : x;
+}
+
+// One sample into its little-endian bytes at dst; returns false for NaN/Inf (nothing written).
+inline bool put_sample(char* dst, float v, bool is_float, long long* clipped) {
   if (!std::isfinite(v)) return false;
+  uint32_t u;
   if (is_float) {
-    uint32_t u;
     std::memcpy(&u, &v, 4);
-    put_u32(b, u);
+    for (int i = 0; i < 4; ++i) dst[i] = static_cast<char>((u >> (8 * i)) & 0xff);
   } else {
     // Round to nearest in float (exact for |v| < 2^8) and clip; Kaldi truncates toward zero.
-    float s = std::nearbyint(v * 32768.0f);
+    float s = round_to_int16_range(v * 32768.0f);
     if (s > 32767.0f || s < -32768.0f) {
       ++*clipped;
       s = std::clamp(s, -32768.0f, 32767.0f);
     }
-    put_u16(b, static_cast<uint16_t>(static_cast<int16_t>(s)));
+    u = static_cast<uint16_t>(static_cast<int16_t>(s));
+    dst[0] = static_cast<char>(u & 0xff);
+    dst[1] = static_cast<char>(u >> 8);
   }
   return true;
 }
@@ -90,12 +101,17 @@ void append_wav_frames(const float* interleaved, size_t frames, int channels, Sa
                        long long first_frame, std::vector<char>* out, long long* clipped) {
   const bool is_float = format == SampleFormat::kFloat32;
   const size_t count = frames * static_cast<size_t>(channels);
-  out->reserve(out->size() + count * (is_float ? 4 : 2));
+  const size_t width = is_float ? 4 : 2;
+  const size_t old = out->size();
+  out->resize(old + count * width);
+  char* dst = out->data() + old;
   long long clipped_here = 0;
-  for (size_t i = 0; i < count; ++i) {
-    if (!put_sample(*out, interleaved[i], is_float, &clipped_here))
+  for (size_t i = 0; i < count; ++i, dst += width) {
+    if (!put_sample(dst, interleaved[i], is_float, &clipped_here)) {
+      out->resize(old + i * width);  // the samples before it stay appended, as written so far
       throw Error("cannot write audio: NaN or Inf sample at frame " +
                   std::to_string(first_frame + static_cast<long long>(i / static_cast<size_t>(channels))));
+    }
   }
   if (clipped) *clipped += clipped_here;
 }

@@ -24,6 +24,13 @@ Field field(T Options::*member) {
           [member](const Options& o) { return py::cast(o.*member); }};
 }
 
+// The per-recording output rules live in ReverbOptions (options.reverb).
+template <typename T>
+Field reverb_field(T ReverbOptions::*member) {
+  return {[member](Options& o, const py::handle& v) { o.reverb.*member = v.cast<T>(); },
+          [member](const Options& o) { return py::cast(o.reverb.*member); }};
+}
+
 const std::map<std::string, Field>& fields() {
   static const std::map<std::string, Field> table = [] {
     std::map<std::string, Field> t;
@@ -32,14 +39,14 @@ const std::map<std::string, Field>& fields() {
     t["prefix"] = field(&Options::prefix);
     t["speech_rvb_probability"] = field(&Options::speech_rvb_probability);
     t["noise_start"] = field(&Options::noise_start);
-    t["shift_output"] = field(&Options::shift_output);
-    t["normalize_output"] = field(&Options::normalize_output);
+    t["shift_output"] = reverb_field(&ReverbOptions::shift_output);
+    t["normalize_output"] = reverb_field(&ReverbOptions::normalize_output);
     t["rir_smoothing_weight"] = field(&Options::rir_smoothing_weight);
     t["noise_smoothing_weight"] = field(&Options::noise_smoothing_weight);
     t["seed"] = field(&Options::random_seed);
     t["snr_reference"] = {
-        [](Options& o, const py::handle& v) { o.snr_reference = parse_snr_reference(v.cast<std::string>()); },
-        [](const Options& o) { return py::cast(snr_reference_name(o.snr_reference)); }};
+        [](Options& o, const py::handle& v) { o.reverb.snr_reference = parse_snr_reference(v.cast<std::string>()); },
+        [](const Options& o) { return py::cast(snr_reference_name(o.reverb.snr_reference)); }};
 #if TSRIR_PYTHON_NOISE_TYPES
     t["foreground_snrs"] = field(&Options::foreground_snrs);
     t["background_snrs"] = field(&Options::background_snrs);

@@ -64,9 +64,7 @@ class Augmenter {
     plan_options_.prefix = o.prefix;
     plan_options_.speech_rvb_probability = o.speech_rvb_probability;
     plan_options_.random_seed = o.random_seed;
-    reverb_.shift_output = o.shift_output;
-    reverb_.normalize_output = o.normalize_output;
-    reverb_.snr_reference = o.snr_reference;
+    reverb_ = o.reverb;
 #if TSRIR_PYTHON_NOISE_TYPES
     check_probability(o.isotropic_noise_addition_probability, "isotropic_noise_addition_probability");
     check_probability(o.pointsource_noise_addition_probability, "pointsource_noise_addition_probability");

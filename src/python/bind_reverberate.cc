@@ -47,7 +47,7 @@ void bind_reverberate(py::module_& m) {
          const py::object& start_time_s, const py::object& offset_s, bool shift_output, bool normalize_output,
          float volume, float duration_s, const std::string& snr_reference, bool loop_noise, bool multi_channel_output,
          int input_channel, int rir_channel, int noise_channel, double rir_fs, double noise_fs) {
-        WavReverberateConfig config;
+        WavReverberateOptions config;
         config.multi_channel_output = multi_channel_output;
         config.input_wave_channel = input_channel;
         config.rir_channel = rir_channel;

@@ -1,13 +1,12 @@
 #include "util/cli.h"
 
 #include <boost/program_options.hpp>
-#include <csignal>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <set>
 #include <sstream>
 
-#include "util/cleanup.h"
 #include "util/config_file.h"
 #include "util/error.h"
 
@@ -15,12 +14,6 @@ namespace po = boost::program_options;
 
 namespace tsrir {
 namespace {
-
-extern "C" void on_terminating_signal(int sig) {
-  remove_registered_temps_on_signal();
-  std::signal(sig, SIG_DFL);
-  std::raise(sig);
-}
 
 const char kPositional[] = "positional-arguments__";
 
@@ -114,6 +107,15 @@ std::vector<std::string> CommandLine::parse(int argc, const char* const* argv, i
     std::string a = argv[i];
     if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
       const OptionSpec* spec = find(a.substr(2));
+      if (spec && spec->is_flag && separate_boolean_values_ && i + 1 < argc) {
+        std::string next = argv[i + 1];
+        for (char& c : next) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (next == "true" || next == "false") {
+          args.push_back(a + "=" + next);
+          ++i;
+          continue;
+        }
+      }
       if (spec && spec->is_flag) a += "=true";
       const OptionSpec* empty_valued = a.size() > 3 && a.find('=') == a.size() - 1 ? find(a.substr(2, a.size() - 3)) : nullptr;
       if (empty_valued && !empty_valued->is_flag) {
@@ -192,21 +194,6 @@ std::vector<std::string> CommandLine::parse(int argc, const char* const* argv, i
                 ")\n" + hint());
   }
   return positional;
-}
-
-int run_program(const std::string& program, const std::function<int()>& body) {
-  set_log_program_name(program);
-  std::signal(SIGINT, on_terminating_signal);
-  std::signal(SIGTERM, on_terminating_signal);
-  std::signal(SIGHUP, on_terminating_signal);
-  try {
-    return body();
-  } catch (const Error& e) {
-    std::cerr << program << ": ERROR: " << e.what() << std::endl;
-  } catch (const std::exception& e) {
-    std::cerr << program << ": ERROR: " << e.what() << std::endl;
-  }
-  return 1;
 }
 
 }  // namespace tsrir

@@ -16,6 +16,7 @@
 
 #include "util/log.h"
 #include "util/options.h"
+#include "util/program.h"
 
 namespace tsrir {
 
@@ -39,6 +40,11 @@ class CommandLine : public OptionsItf {
     Register(name, values, help);
   }
 
+  // Boolean options then also take their value as the next word, "--shift-output true|false" (the
+  // syntax of Kaldi's Python scripts, e.g. reverberate_data_dir.py); otherwise that word would be a
+  // positional argument.
+  void accept_separate_boolean_values() { separate_boolean_values_ = true; }
+
   // Parses argv (after the --config files); returns the positional arguments. Exits 0 after printing
   // the usage for --help (or -h); throws Error for unknown options, bad values, unreadable or malformed
   // config files (naming file:line), or a positional count outside [min, max] (max < 0 = unbounded).
@@ -58,11 +64,7 @@ class CommandLine : public OptionsItf {
   std::vector<OptionSpec> specs_;
   std::map<std::string, size_t> index_;          // option name or alias -> specs_ index
   std::vector<std::pair<std::string, std::string>> aliases_;  // (alias, name), in registration order
+  bool separate_boolean_values_ = false;
 };
-
-// Runs a program body: Error and std::exception become "<program>: ERROR: <message>" on stderr
-// and exit status 1. Also names the program in log lines and installs the SIGINT/SIGTERM handler
-// that removes temporary outputs.
-int run_program(const std::string& program, const std::function<int()>& body);
 
 }  // namespace tsrir

@@ -21,10 +21,10 @@ struct Parsed {
 Parsed parse(std::vector<std::string> args) {
   Parsed p;
   tsrir::KaldiOptionParser po("usage");
-  po.add("shift-output", &p.flag, "bool");
-  po.add("input-wave-channel", &p.channel, "int");
-  po.add("volume", &p.volume, "float");
-  po.add("impulse-response", &p.rir, "string");
+  po.Register("shift-output", &p.flag, "bool");
+  po.Register("input-wave-channel", &p.channel, "int");
+  po.Register("volume", &p.volume, "float");
+  po.Register("impulse-response", &p.rir, "string");
   args.insert(args.begin(), "prog");
   args.insert(args.begin() + 1, "--print-args=false");
   std::vector<const char*> argv;
@@ -94,7 +94,7 @@ TEST(KaldiOptions, ConfigFileThenCommandLine) {
 TEST(KaldiOptions, HelpAndEscape) {
   tsrir::KaldiOptionParser po("Usage: x\ne.g. x a b");
   float v = 0;
-  po.add("volume", &v, "gain");
+  po.Register("volume", &v, "gain");
   const char* argv[] = {"prog", "a", "--help"};  // --help is found anywhere among options only
   EXPECT_EQ(po.parse(3, argv), tsrir::KaldiOptionParser::Outcome::kHelp);
   EXPECT_NE(po.usage_text().find("--volume"), std::string::npos);

@@ -128,7 +128,11 @@ def parse_pipe(line):
         starts = [float(x) for x in opts["start-times"].split(",")]
         snrs = [float(x) for x in opts["snrs"].split(",")]
         assert len(signals) == len(starts) == len(snrs), line
-        for sig, start, snr in zip(signals, starts, snrs):
+        # tsrir's own form does Kaldi's nested step in the outer process: one field per signal in
+        # --additive-impulse-responses (empty = none) and --additive-durations (0 = as is).
+        in_rirs = opts.get("additive-impulse-responses", "").split(",") if "additive-impulse-responses" in opts else None
+        in_durs = opts.get("additive-durations", "").split(",") if "additive-durations" in opts else None
+        for i, (sig, start, snr) in enumerate(zip(signals, starts, snrs)):
             sw = shlex.split(sig)
             j = [i for i, w in enumerate(sw) if w.endswith("wav-reverberate")]
             if j:
@@ -137,7 +141,9 @@ def parse_pipe(line):
                 noises.append((base(noise), base(nopts["impulse-response"]) if "impulse-response" in nopts else None,
                                float(nopts["duration"]) if "duration" in nopts else None, start, snr))
             else:
-                noises.append((base(sw[0]), None, None, start, snr))
+                rir = base(in_rirs[i]) if in_rirs and in_rirs[i] else None
+                dur = float(in_durs[i]) if in_durs and in_durs[i] and float(in_durs[i]) > 0 else None
+                noises.append((base(sw[0]), rir, dur, start, snr))
     return speech_rir, noises
 
 
@@ -234,7 +240,8 @@ def compare(kaldi_dir, ours_dir, data_dir):
     c = Checker()
     # Output structure: the same files (ours adds reco2dur) and the same ids in each.
     kf = set(os.listdir(kaldi_dir)) - {"log", ".backup"}
-    of = set(os.listdir(ours_dir)) - {"reco2dur", ".tsrir-output"}
+    # Besides reco2dur, ours holds the marker that says tsrir wrote it (src/io/owned_output.h).
+    of = set(os.listdir(ours_dir)) - {"reco2dur", ".tsrir-output", ".tsrir-owned"}
     c.exact("same files (besides our reco2dur)", kf == of, "kaldi %s tsrir %s" % (sorted(kf), sorted(of)))
     for name in sorted(kf & of):
         if os.path.isfile(os.path.join(kaldi_dir, name)):

@@ -9,8 +9,10 @@
 #     within sampling error (kaldi_parity.py compare);
 #  3. Kaldi's script on tsrir's bin/ alone (no Kaldi binary on PATH): get_reco2dur.sh through our
 #     wav-to-duration, the output validated by Kaldi's validate_data_dir.sh, every pipe run by our
-#     wav-reverberate and by Kaldi's, int16 outputs within 8 LSB; and our reverberate-data's pipes
-#     with --pipe-program=Kaldi's wav-reverberate, accepted and within 8 LSB of ours.
+#     wav-reverberate and by Kaldi's, int16 outputs within 8 LSB (ours with --kaldi-compat, which
+#     reproduces the error of Kaldi's FFT block convolution; first an exact-answer check shows that
+#     error); and our reverberate-data's pipes with --pipe-program=Kaldi's wav-reverberate, accepted
+#     and within 8 LSB of ours.
 # Usage: kaldi_parity_test.sh <tsrir-bin-dir>     (env: KALDI_ROOT; KEEP=1 keeps the work dir)
 set -euo pipefail
 export PYTHONDONTWRITEBYTECODE=1   # nothing written into the source tree
@@ -95,50 +97,67 @@ PATH="$base_path" utils/validate_data_dir.sh --no-feats --no-text kaldi_small >/
   data/small ours_kpipes >ours_kpipes.log 2>&1 || { tail -5 ours_kpipes.log; echo "FAIL: --pipe-program=Kaldi's"; exit 1; }
 "$bin/reverberate-data" "${common[@]}" "${small_opts[@]}" data/small ours_small >ours_small.log 2>&1 ||
   { tail -5 ours_small.log; echo "FAIL"; exit 1; }
-# An exact answer first: a one-tap RIR (0.5 at sample 0, a 4-sample file and a 1000-sample one)
-# with --normalize-output=false must give input * 0.5. A binary that misses it by more than 1 LSB
-# computes wrong convolutions; LSB bounds against it are then reported, not enforced.
+# Kaldi's binary has a defect of its own: its FFT block convolution multiplies the packed DC and
+# Nyquist bins as one complex number (src/augment/kaldi_block_error.h), so even a one-tap RIR (0.5 at
+# sample 0; a 4-sample file and a 1000-sample one) with --normalize-output=false does not give
+# input * 0.5. Our default output must (to 0.5 LSB of rounding); with --kaldi-compat ours reproduces
+# Kaldi's error and must match its output to 1 LSB (its truncation vs float rounding), which shows
+# that the difference is that defect and not a bad build. The LSB bounds below compare Kaldi's
+# binary with ours in --kaldi-compat mode (a wrapper first on PATH adds the option to every
+# wav-reverberate the pipes start, nested ones included); our default mode is reported beside them.
+mkdir -p compat
+printf '#!/bin/sh\nexec %q --kaldi-compat=true "$@"\n' "$bin/wav-reverberate" > compat/wav-reverberate
+chmod +x compat/wav-reverberate
 python3 -c "
 import sys; sys.path.insert(0, '$here')
 from kaldi_parity import write_wav
 for n in (4, 1000):
     write_wav('delta%d.wav' % n, [16384.0] + [0.0] * (n - 1))"
-kaldi_exact=1
 for n in 4 1000; do
-  for who in tsrir kaldi; do
-    prog=$bin/wav-reverberate; [ $who = kaldi ] && prog=$kbin/wav-reverberate
+  for who in tsrir kaldi compat; do
+    prog=$bin/wav-reverberate; [ $who = kaldi ] && prog=$kbin/wav-reverberate; [ $who = compat ] && prog=compat/wav-reverberate
     "$prog" --print-args=false --impulse-response=delta$n.wav --normalize-output=false audio/s0-u03.wav delta_$who.wav 2>>pipes.log
-    err=$(python3 "$here/kaldi_parity.py" delta-check audio/s0-u03.wav delta_$who.wav 0.5)
-    echo "exact-answer check ($n-sample one-tap RIR): $who off by $err LSB"
-    if awk -v e="$err" 'BEGIN { exit !(e > 1) }'; then
-      if [ $who = tsrir ]; then fail=1; else kaldi_exact=0; fi
-    fi
   done
+  err=$(python3 "$here/kaldi_parity.py" delta-check audio/s0-u03.wav delta_tsrir.wav 0.5)
+  kerr=$(python3 "$here/kaldi_parity.py" delta-check audio/s0-u03.wav delta_kaldi.wav 0.5)
+  read -r d rms len < <(python3 "$here/kaldi_parity.py" wav-diff delta_compat.wav delta_kaldi.wav)
+  [[ $d =~ ^[0-9]+$ ]] || d=99999
+  echo "exact answer, $n-sample one-tap RIR: tsrir off by $err LSB, Kaldi by $kerr LSB; tsrir --kaldi-compat vs Kaldi: max $d LSB, rms $rms"
+  awk -v e="$err" 'BEGIN { exit !(e > 0.5) }' && { echo "FAIL: tsrir misses the exact answer"; fail=1; }
+  [ "$d" -le 1 ] || { echo "FAIL: --kaldi-compat does not reproduce Kaldi's block-convolution error"; fail=1; }
 done
-[ $kaldi_exact = 1 ] || echo "NOTE: Kaldi's binary at $kbin fails the exact-answer check: its differences from tsrir below are reported, not held to 8 LSB"
-worst=0; nested=0; n=0
+worst=0; worst_default=0; nested=0; n=0
 run_pipe() { local line=$1 path=$2 out=$3; PATH="$path" bash -c "${line% |} > $out"; }
 while read -r id line; do
+  run_pipe "$line" "$work/compat:$base_path" "k_compat_$id.wav" 2>>pipes.log || { echo "FAIL: tsrir --kaldi-compat runs Kaldi's pipe $id"; fail=1; continue; }
   run_pipe "$line" "$bin:$base_path" "k_ours_$id.wav" 2>>pipes.log || { echo "FAIL: tsrir runs Kaldi's pipe $id"; fail=1; continue; }
   run_pipe "$line" "$kbin:$base_path" "k_kaldi_$id.wav" 2>>pipes.log || { echo "FAIL: Kaldi runs its pipe $id"; fail=1; continue; }
-  read -r d rms len < <(python3 "$here/kaldi_parity.py" wav-diff "k_ours_$id.wav" "k_kaldi_$id.wav")
-  printf 'kaldi pipe %-12s %d nested, %7d samples: max %3d LSB, rms %.2f\n' "$id" "$(( $(grep -o 'wav-reverberate' <<<"$line" | wc -l) - 1 ))" "$len" "$d" "$rms"
+  read -r d rms len < <(python3 "$here/kaldi_parity.py" wav-diff "k_compat_$id.wav" "k_kaldi_$id.wav")
+  read -r dd drms dlen < <(python3 "$here/kaldi_parity.py" wav-diff "k_ours_$id.wav" "k_kaldi_$id.wav")
+  [[ $d =~ ^[0-9]+$ && $dd =~ ^[0-9]+$ ]] || { echo "FAIL: kaldi pipe $id: outputs differ in length ($d $rms $len; $dd $drms $dlen)"; fail=1; continue; }
+  printf 'kaldi pipe %-12s %d nested, %7d samples: --kaldi-compat max %3d LSB, rms %.2f; default max %3d, rms %.2f\n' \
+    "$id" "$(( $(grep -o 'wav-reverberate' <<<"$line" | wc -l) - 1 ))" "$len" "$d" "$rms" "$dd" "$drms"
   [ "$d" -gt "$worst" ] && worst=$d
+  [ "$dd" -gt "$worst_default" ] && worst_default=$dd
   n=$((n + 1)); nested=$((nested + $(grep -o 'wav-reverberate' <<<"$line" | wc -l) - 1))
 done < <(grep wav-reverberate kaldi_small/wav.scp)
 while read -r id line; do
   ours_line=$(grep "^$id " ours_small/wav.scp | cut -d' ' -f2-)
+  compat_line=${line//"$kbin/wav-reverberate"/"$work/compat/wav-reverberate"}
   bash -c "${line% |} > o_kaldi_$id.wav" 2>>pipes.log || { echo "FAIL: Kaldi's binary refuses our pipe $id"; fail=1; continue; }
+  bash -c "${compat_line% |} > o_compat_$id.wav" 2>>pipes.log || { echo "FAIL: our pipe $id with --kaldi-compat"; fail=1; continue; }
   bash -c "${ours_line% |} > o_ours_$id.wav" 2>>pipes.log || { echo "FAIL: our pipe $id"; fail=1; continue; }
-  read -r d rms len < <(python3 "$here/kaldi_parity.py" wav-diff "o_ours_$id.wav" "o_kaldi_$id.wav")
-  printf 'tsrir pipe %-12s run by Kaldi: max %3d LSB, rms %.2f\n' "$id" "$d" "$rms"
+  read -r d rms len < <(python3 "$here/kaldi_parity.py" wav-diff "o_compat_$id.wav" "o_kaldi_$id.wav")
+  read -r dd drms dlen < <(python3 "$here/kaldi_parity.py" wav-diff "o_ours_$id.wav" "o_kaldi_$id.wav")
+  [[ $d =~ ^[0-9]+$ && $dd =~ ^[0-9]+$ ]] || { echo "FAIL: tsrir pipe $id: outputs differ in length ($d $rms $len; $dd $drms $dlen)"; fail=1; continue; }
+  printf 'tsrir pipe %-12s run by Kaldi: --kaldi-compat max %3d LSB, rms %.2f; our own pipe (default) max %3d, rms %.2f\n' \
+    "$id" "$d" "$rms" "$dd" "$drms"
   [ "$d" -gt "$worst" ] && worst=$d
+  [ "$dd" -gt "$worst_default" ] && worst_default=$dd
   n=$((n + 1))
 done < <(grep wav-reverberate ours_kpipes/wav.scp)
-echo "pipes compared: $n ($nested nested noise commands in Kaldi's); largest difference $worst LSB (bound 8)"
+echo "pipes compared: $n ($nested nested noise commands in Kaldi's); largest difference from Kaldi's binary: $worst LSB with --kaldi-compat (bound 8), $worst_default LSB in the default mode (Kaldi's block error included; not bounded)"
 [ "$n" -ge 10 ] || { echo "FAIL: too few pipes compared"; fail=1; }
-if [ "$worst" -gt 8 ]; then
-  if [ $kaldi_exact = 1 ]; then fail=1; else echo "(not enforced: Kaldi's binary failed the exact-answer check)"; fi
-fi
+[ "$worst" -le 8 ] || fail=1
 [ $fail = 0 ] && echo "PASS: Kaldi parity" || echo "FAIL: Kaldi parity"
 exit $fail

@@ -117,7 +117,9 @@ Result wav_reverberate(const Vec& x, double fs, const Vec& rir, const std::vecto
   if (o.volume > 0) gain = o.volume;
   else if (o.normalize_output) gain = std::sqrt(p_in / mean_power(y));
   const size_t avail = (!rir.empty() && o.shift_output) ? n : y.size();
-  const size_t out_len = o.duration_s > 0 ? static_cast<size_t>(fs * o.duration_s) : avail;
+  // Kaldi: int32 num_samp_output = samp_freq * duration, a product of two BaseFloats.
+  const size_t out_len =
+      o.duration_s > 0 ? static_cast<size_t>(static_cast<float>(fs) * static_cast<float>(o.duration_s)) : avail;
   r.output.resize(out_len);
   for (size_t j = 0; j < out_len; ++j) r.output[j] = gain * y[shift + j % avail];
   return r;

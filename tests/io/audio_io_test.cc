@@ -7,6 +7,7 @@
 
 #include "io/audio_io.h"
 #include "io/rir_set.h"
+#include "sndfile_writer.h"
 #include "test_dir.h"
 #include "util/error.h"
 
@@ -18,21 +19,6 @@ std::vector<float> sine(double f, double fs, size_t n, double amp = 0.5) {
   std::vector<float> v(n);
   for (size_t i = 0; i < n; ++i) v[i] = static_cast<float>(amp * std::sin(2 * M_PI * f * i / fs));
   return v;
-}
-
-// Written with libsndfile directly (not the code under test), in the requested container/encoding.
-void write_with_sndfile(const std::string& path, int format, int rate, const std::vector<std::vector<float>>& ch) {
-  SF_INFO info{};
-  info.samplerate = rate;
-  info.channels = static_cast<int>(ch.size());
-  info.format = format;
-  SNDFILE* f = sf_open(path.c_str(), SFM_WRITE, &info);
-  ASSERT_NE(f, nullptr) << sf_strerror(nullptr);
-  std::vector<float> inter(ch[0].size() * ch.size());
-  for (size_t n = 0; n < ch[0].size(); ++n)
-    for (size_t c = 0; c < ch.size(); ++c) inter[n * ch.size() + c] = ch[c][n];
-  sf_writef_float(f, inter.data(), static_cast<sf_count_t>(ch[0].size()));
-  sf_close(f);
 }
 
 void expect_error_mentions(const std::function<void()>& fn, const std::string& needle) {

@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 #include <sndfile.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <random>
 
 #include "io/audio_io.h"
 #include "test_dir.h"
@@ -113,4 +116,32 @@ TEST_F(WavWriter, EncodeIsHeaderPlusAppendedFramesForAnyChannelCount) {
       EXPECT_EQ(whole, pieces) << channels << " channel(s)";
     }
   }
+}
+
+// 16-bit samples are round(v * 32768) half to even, clipped to [-32768, 32767] and counted when
+// clipped: checked against std::nearbyint on ties, zeros, the clipping edges, huge values and a
+// sweep of random ones (the writer rounds inline, not with nearbyint).
+TEST(WavWriterRounding, Int16IsNearbyintThenClip) {
+  std::vector<float> v = {0.0f, -0.0f, 1e-30f, -1e-30f, 0.5f / 32768, -0.5f / 32768, 1.5f / 32768, -1.5f / 32768,
+                          2.5f / 32768, -2.5f / 32768, 32766.5f / 32768, -32767.5f / 32768, 32767.49f / 32768,
+                          32767.5f / 32768, -32768.5f / 32768, 1.0f, -1.0f, 1.5f, -1.5f, 127.99f, -128.0f,
+                          4194303.5f / 32768, 4194304.5f / 32768, 3e9f, -3e9f, 3e38f, -3e38f};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.2f, 1.2f);
+  for (int i = 0; i < 200000; ++i) v.push_back(u(rng));
+  for (int i = -70000; i <= 70000; ++i) v.push_back((i + 0.5f) / 32768);  // every tie in range and past it
+  long long clipped = 0;
+  std::vector<char> bytes;
+  append_wav_frames(v.data(), v.size(), 1, SampleFormat::kInt16, 0, &bytes, &clipped);
+  ASSERT_EQ(bytes.size(), 2 * v.size());
+  long long want_clipped = 0;
+  for (size_t i = 0; i < v.size(); ++i) {
+    float r = std::nearbyint(v[i] * 32768.0f);
+    if (r > 32767.0f || r < -32768.0f) ++want_clipped;
+    const int want = static_cast<int>(std::clamp(r, -32768.0f, 32767.0f));
+    const int got = static_cast<int16_t>(static_cast<uint16_t>(static_cast<unsigned char>(bytes[2 * i]) |
+                                                                (static_cast<unsigned char>(bytes[2 * i + 1]) << 8)));
+    ASSERT_EQ(got, want) << "sample " << v[i];
+  }
+  EXPECT_EQ(clipped, want_clipped);
 }

@@ -57,3 +57,23 @@ TEST(CommandLine, RunProgramTurnsErrorsIntoExitStatus) {
   std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("p: ERROR: file.scp:3: bad"), std::string::npos);
 }
+
+// Kaldi's Python scripts write booleans as "--shift-output true": accepted when a program asks for it
+// (reverberate-data); otherwise the word stays a positional argument.
+TEST(CommandLine, SeparateBooleanValuesOnRequest) {
+  for (bool accept : {false, true}) {
+    bool b = true;
+    CommandLine cl("prog", "prog [options] <a>\ne.g.: prog --flag false a\n");
+    cl.flag("flag", &b, "a flag");
+    if (accept) cl.accept_separate_boolean_values();
+    const char* argv[] = {"prog", "--flag", "FALSE", "a"};
+    const std::vector<std::string> pos = cl.parse(4, argv, 0, -1);
+    if (accept) {
+      EXPECT_FALSE(b);
+      EXPECT_EQ(pos, (std::vector<std::string>{"a"}));
+    } else {
+      EXPECT_TRUE(b);
+      EXPECT_EQ(pos, (std::vector<std::string>{"FALSE", "a"}));
+    }
+  }
+}

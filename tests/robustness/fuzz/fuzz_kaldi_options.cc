@@ -31,11 +31,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     float volume = 0.0f;
     double snr = 0.0;
     std::string rir;
-    p.add("shift-output", &shift, "b");
-    p.add("input-channel", &channel, "i");
-    p.add("volume", &volume, "f");
-    p.add("snrs", &snr, "d");
-    p.add("impulse-response", &rir, "s");
+    p.Register("shift-output", &shift, "b");
+    p.Register("input-channel", &channel, "i");
+    p.Register("volume", &volume, "f");
+    p.Register("snrs", &snr, "d");
+    p.Register("impulse-response", &rir, "s");
     p.parse(static_cast<int>(argv.size()), argv.data());
     for (const auto& pos : p.positionals()) FUZZ_CHECK(pos.size() <= text.size(), "positional longer than input");
   });
