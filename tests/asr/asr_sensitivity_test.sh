@@ -73,6 +73,7 @@ train() {  # <data> <model> <seed>
   asr-train $TRAIN_OPTS --num-threads=1 --seed="$3" --progress-interval=600 "$1" "$2" 2>"$2.log" &&
     asr-decode "$2" "$tmp/c/test_rvb" "$2/decode" 2>>"$2.log" || { tail "$2.log" >&2; return 1; }
 }
+# shellcheck disable=SC2034  # read through ${!sb} below
 read -r b1 b2 <<<"$seeds_b"
 for k in 1 2; do
   sa=seed$k; sb=b$k; sa=${!sa}; sb=${!sb}

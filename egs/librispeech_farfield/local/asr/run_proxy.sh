@@ -125,7 +125,8 @@ train_and_decode() {  # <set> <seed>
     log "$s (seed $seed) trained in $((SECONDS - start)) s"
   fi
   for t in "${tests[@]}"; do
-    local dsig="$sig $(cat "$exp/markers/$t.data")"
+    local dsig
+    dsig="$sig $(cat "$exp/markers/$t.data")"
     done_with "$exp/markers/$name.decode_$t" "$dsig" && continue
     asr-decode --num-threads="$num_threads" "$m" "$data/$t" "$m/decode_$t" 2>>"$exp/log/decode_$name.log" ||
       { tail "$exp/log/decode_$name.log" >&2; die "asr-decode failed for $s, seed $seed, $t"; }
