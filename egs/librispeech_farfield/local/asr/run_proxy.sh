@@ -105,7 +105,8 @@ train_and_decode() {  # <set> <seed>
   local s=$1 seed=$2 tr m name sig resume=() start t
   if [ "$s" = clean ]; then tr=$data/tts/train; else tr=$data/train_$s; fi
   name=${s}_seed$seed; m=$exp/$name
-  sig="$config_sig $(cat "$exp/markers/tts.data" 2>/dev/null) $(cat "$exp/markers/train_$s.data" 2>/dev/null)"
+  # The clean set has no train_<set>.data marker: a failing cat would end the job under set -e.
+  sig="$config_sig $(cat "$exp/markers/tts.data" 2>/dev/null || true) $(cat "$exp/markers/train_$s.data" 2>/dev/null || true)"
   if ! done_with "$exp/markers/$name.model" "$sig"; then
     if [ -f "$m/checkpoint.pt" ] && done_with "$exp/markers/$name.sig" "$sig"; then
       resume=(--resume)
