@@ -2,6 +2,7 @@
 #include <string>
 
 #include "asr/asr.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 #include "util/strings.h"
 
@@ -16,13 +17,14 @@ int main(int argc, char** argv) {
         "(words) and <out-dir>/cer (characters, the space between words counted as one) in Kaldi\n"
         "compute-wer's format (%WER 12.34 [ 56 / 454, 3 ins, 20 del, 33 sub ], %SER, Scored ...),\n"
         "and <out-dir>/utt_errors (per utterance: reference length, errors, ins, del, sub for words\n"
-        "then characters). Only these four files are created or replaced, each atomically.\n"
+        "then characters). Only these four files are created or replaced, all four at once; <out-dir>\n"
+        "is marked as the toolkit's (.tsrir-owned) and may lie inside <model-dir> (Kaldi's exp/<model>/decode_*).\n"
         "\n"
         "Usage: asr-decode [options] <model-dir> <data-dir> <out-dir>\n"
         "Example:\n"
         "  asr-decode --num-threads=2 exp/asr/real data/test_farfield exp/asr/real/decode_test_farfield\n");
-    cli.option("num-threads", &o.num_threads, "CPU threads for LibTorch and feature extraction");
-    cli.option("batch-size", &o.batch_size, "Utterances per forward pass");
+    o.Register(&cli);
+    tsrir::register_output_options(&cli);
     const auto args = cli.parse(argc, argv, 3, 3);
     o.model_dir = args[0];
     o.data_dir = args[1];

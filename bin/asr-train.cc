@@ -2,6 +2,7 @@
 #include <string>
 
 #include "asr/asr.h"
+#include "io/owned_output.h"
 #include "util/cli.h"
 #include "util/strings.h"
 
@@ -22,33 +23,11 @@ int main(int argc, char** argv) {
         "checkpoint stopped (also mid-epoch), and may raise --epochs.\n"
         "\n"
         "Usage: asr-train [options] <data-dir> <model-dir>\n"
-        "Example:\n"
-        "  asr-train --epochs=20 --num-threads=2 --seed=1 data/train_rvb_real exp/asr/real\n");
-    cli.option("epochs", &o.epochs, "Total training epochs (a resumed run continues to this count)");
-    cli.option("max-minutes", &o.max_minutes, "Stop after this many minutes of training with a checkpoint (0 = no limit)");
-    cli.option("seed", &o.seed, "Random seed (initialisation, batch order, masks, dropout)");
-    cli.option("num-threads", &o.num_threads, "CPU threads for LibTorch and feature extraction");
-    cli.option("batch-size", &o.batch_size, "Utterances per step (batches group similar lengths)");
-    cli.option("learning-rate", &o.learning_rate, "Adam learning rate");
-    cli.option("grad-clip", &o.grad_clip, "Gradient norm clip");
-    cli.option("conv-layers", &o.model.conv_layers, "1-D convolution layers");
-    cli.option("conv-channels", &o.model.conv_channels, "Channels of the convolutions");
-    cli.option("conv-kernel", &o.model.conv_kernel, "Kernel width of the convolutions (odd)");
-    cli.option("subsampling", &o.model.subsampling, "Time stride of the first convolution");
-    cli.option("rnn-type", &o.model.rnn_type, "gru or lstm");
-    cli.option("rnn-layers", &o.model.rnn_layers, "Bidirectional recurrent layers");
-    cli.option("rnn-hidden", &o.model.rnn_hidden, "Hidden units per direction");
-    cli.option("dropout", &o.model.dropout, "Dropout after the convolutions, between and after the recurrent layers");
-    cli.option("time-masks", &o.time_masks, "SpecAugment time masks per utterance");
-    cli.option("max-time-mask", &o.max_time_mask, "Longest time mask as a fraction of the utterance");
-    cli.option("freq-masks", &o.freq_masks, "SpecAugment frequency masks per utterance");
-    cli.option("max-freq-mask", &o.max_freq_mask, "Widest frequency mask (mel bins)");
-    cli.option("num-mel-bins", &o.features.num_mel_bins, "Mel filters");
-    cli.option("sample-rate", &o.features.sample_rate_hz, "Audio is resampled to this rate (Hz)");
-    cli.option("low-freq", &o.features.low_hz, "Lowest mel filter edge (Hz)");
-    cli.option("high-freq", &o.features.high_hz, "Highest mel filter edge (Hz; <= 0: offset from Nyquist)");
-    cli.flag("resume", &o.resume, "Continue from <model-dir>/checkpoint.pt (same settings required)");
-    cli.option("progress-interval", &o.progress_interval_s, "Seconds between progress lines on stderr");
+        "Examples:\n"
+        "  asr-train --epochs=20 --num-threads=2 --seed=1 data/train_rvb_real exp/asr/real\n"
+        "  asr-train --config=conf/asr-train-proxy.conf --seed=1 data/train_rvb_real exp/asr/real\n");
+    o.Register(&cli);
+    tsrir::register_output_options(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);
     o.data_dir = args[0];
     o.model_dir = args[1];

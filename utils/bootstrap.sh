@@ -9,7 +9,7 @@ build_dir=${BUILD_DIR:-$root/build}
 packages=(build-essential cmake ninja-build pkg-config
           libtorch-dev libopenblas0-pthread libsndfile1-dev libsox-dev libsox-fmt-all sox
           libfftw3-dev libeigen3-dev libboost-program-options-dev libgtest-dev
-          espeak-ng flac
+          espeak-ng flac bible-kjv   # bible-kjv: the TTS corpus's sentences (stage 8 --asr proxy)
           python3-dev pybind11-dev python3-numpy python3-torch)
 missing=()
 for p in "${packages[@]}"; do

@@ -17,7 +17,8 @@
 #      absorption (rir-room-list, rir-simulate via $train_cmd JOB=1:$nj)
 #   3  sub-band EQ fitted on the real training RIRs (rir-eq fit)
 #   4  TS-RIRGAN trained on real vs GAS training RIRs (ts-rirgan-train), or --gan-model given
-#   5  the RIR sets GAS, GAS+EQ, G(GAS), G(GAS+EQ), G(GAS)+EQ for the train and test splits
+#   5  the RIR sets GAS, GAS+EQ, G(GAS), G(GAS+EQ), G(GAS)+EQ for the train and test splits, and
+#      GAS-ext: rir-diagnose fits its extended model on the real training RIRs, rir-simulate renders it
 #   6  Table 1: rir-metrics --reference=<real test RIRs> over the test-split sets -> RESULTS.md
 #   7  far-field data dirs (reverberate-data): one training set per RIR set, dev and test sets
 #      with real RIRs; real noise at a random offset, looped, SNR 1-2 dB; validated
@@ -27,7 +28,7 @@
 #      --asr proxy (default without Kaldi): local/asr/run_proxy.sh, a TTS corpus (train/test voices)
 #      reverberated with each training set + real noise, a compact CTC recogniser per set and seed
 #      (asr-train/asr-decode), tested on test voices ⊛ held-out real test RIRs + real noise; CER,
-#      WER and a paired test against GAS -> RESULTS.md. --demo stops at 7: add --stop-stage 8.
+#      WER and a paired test against GAS -> RESULTS.md (the demo runs it: Table 1 and Table 2).
 # Set names read left to right as the operations applied: gas_eq = GAS+EQ, gas_gsr = G(GAS),
 # gas_eq_gsr = G(GAS+EQ), gas_gsr_eq = G(GAS)+EQ (the paper's best), real, clean (no RIR).
 set -euo pipefail
@@ -73,15 +74,17 @@ gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on
 metrics_definition=irstats
 snrs=1..2             # SNR range lo..hi dB (reverberate-data --background-snrs; Kaldi lists a:b:c work too)
 write_wavs=false      # far-field dirs: pipes in wav.scp (Kaldi's way) or 16-bit wavs
-rir_sets="gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"
-train_sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq"   # stages 7-8
+rir_sets="gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq gas_ext"
+train_sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq gas_ext"   # stages 7-8
 kaldi_stage=0         # local/kaldi/run_asr.sh --stage
 asr=""                # stage 8: kaldi | proxy (default: kaldi when KALDI_ROOT is set; else proxy for
                       # --demo, and for the full experiment a skip with a message)
 asr_seeds="0"         # proxy: one model per training set and seed
 asr_num_threads=1     # proxy: LibTorch threads per model (1: threads spin-wait on a busy machine)
-asr_corpus_opts=""    # proxy: local/asr/make_tts_corpus.sh options
-asr_train_opts=""     # proxy: asr-train options (default: local/asr/run_proxy.sh's)
+asr_jobs=2            # proxy: models trained at once
+asr_corpus_opts=""    # proxy: local/asr/make_tts_corpus.sh options (default: its own)
+asr_train_config=../../conf/asr-train-proxy.conf   # proxy: asr-train --config (Table 2's configuration)
+asr_train_opts=""     # proxy: more asr-train options, overriding the config
 lm_url=www.openslr.org/resources/11
 
 help_message="Usage: $0 [options]   (see the top of $0 for the stages)
@@ -114,7 +117,7 @@ for ((i = 1; i < $#; i++)); do
   if [ "${!i}" = --demo-size ]; then demo_size=${!j}; fi
 done
 if [ "$demo" = true ]; then
-  data=demo/data; exp=demo/exp; results=demo/RESULTS.md; stop_stage=7
+  data=demo/data; exp=demo/exp; results=demo/RESULTS.md
   nj=2; num_threads=2; gan_num_threads=1; write_wavs=true
   # The program's defaults (the configuration that passes tests/gan's translation-fidelity suite,
   # issue 17); ts-rirgan-train stops with an error if its generator collapses.
@@ -126,6 +129,14 @@ if [ "$demo" = true ]; then
     # proves that the pipeline runs.
     tiny) gan_steps=6; gan_width=4; gan_batch_size=4 ;;
     small) gan_steps=300; gan_width=8; gan_batch_size=4 ;;
+  esac
+  # Stage 8 runs the proxy recogniser (no Kaldi needed). The small demo: Table 2's configuration
+  # (conf/asr-train-proxy.conf, make_tts_corpus.sh's defaults; docs/results/downstream.md).
+  # The tiny demo only proves that stage 8 runs: 2 utterances per voice, one epoch of a toy model.
+  case $demo_size in
+    tiny) asr_corpus_opts="--utts-per-train-voice 2 --utts-per-test-voice 2"
+          asr_train_opts="--epochs=1 --conv-layers=1 --conv-channels=8 --rnn-layers=1 --rnn-hidden=8 --batch-size=4" ;;
+    small) ;;
   esac
 fi
 
@@ -160,17 +171,8 @@ mark_done() { { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; } || die "cann
 # The bytes of whichever of the files exist (a stage signature's ingredients); never fails, so a
 # missing file cannot end the script silently under `set -e -o pipefail` inside "$(...)".
 content_of() { local f; for f in "$@"; do if [ -f "$f" ]; then cat "$f"; fi; done; return 0; }
-# Removes the files tsrir wrote into a directory (those its .tsrir-owned marker lists), the marker,
-# and the directory if nothing else is left: never a file of the user's (docs/robustness.md).
-remove_tsrir_files() {
-  local dir=$1 f
-  [ -f "$dir/.tsrir-owned" ] || return 0
-  while IFS=$'\t' read -r f _; do
-    case $f in '#'*|''|*/*) ;; *) rm -f -- "$dir/$f" ;; esac
-  done <"$dir/.tsrir-owned"
-  rm -f -- "$dir/.tsrir-owned"
-  rmdir -- "$dir" 2>/dev/null || log "kept $dir: it holds files tsrir did not write"
-}
+# The files tsrir wrote into a directory (its .tsrir-owned marker lists them), never a user's.
+remove_tsrir_files() { local/remove_tsrir_files.sh "$@"; }
 require() { for f in "$@"; do [ -s "$f" ] || die "missing input $f (run the earlier stages first)"; done; }
 need_program() {
   for p in "$@"; do
@@ -201,7 +203,7 @@ set_label() {
   case $1 in
     real) echo real ;; gas) echo GAS ;; gas_eq) echo GAS+EQ ;; gas_gsr) echo "G(GAS)" ;;
     gas_eq_gsr) echo "G(GAS+EQ)" ;; gas_gsr_eq) echo "G(GAS)+EQ" ;; clean) echo "clean" ;;
-    gas_ext) echo "GAS-ext" ;;  # hook: rir-simulate with rir-diagnose's extended model (a stage to come)
+    gas_ext) echo "GAS-ext" ;;
     *) die "unknown RIR set name '$1'" ;;
   esac
 }
@@ -431,6 +433,58 @@ if [ $stage -le 5 ] && [ $stop_stage -ge 5 ]; then
       log "stage 5:   $(set_label "$set") ($split): $(count "$out/rir.scp") RIRs in $out"
     done
   done
+  # GAS-ext: rir-diagnose tests the real training RIRs against their GAS set-ups (stage 2's room
+  # list: same positions and random absorption) for the effects of its catalog and fits the model
+  # extension of each detected one per room (decided on half of the RIRs, judged on the other half);
+  # rir-simulate then renders every set-up of the train and test splits with its room's extended
+  # model. The set differs from GAS only by what the diagnosis found.
+  if [[ " $rir_sets $train_sets " == *" gas_ext "* ]]; then
+    need_program rir-diagnose rir-simulate
+    require "$rirs/gas_all/room_list" "$rirs/real_train/rir_list"
+    diag=$exp/diagnose
+    sig="model=$sim_model seed=$seed $(content_of "$rirs/real_train/.done" "$rirs/gas_all/.done" | md5sum)"
+    if is_done "$diag.done" "$sig"; then
+      log "stage 5:   rir-diagnose already ran ($diag)"
+    else
+      rm -f "$diag.done"
+      run_logged "$exp/log/diagnose.log" rir-diagnose --fs=16000 --model="$sim_model" --seed="$seed" \
+        --num-threads="$num_threads" "$rirs/gas_all/room_list" "$rirs/real_train/rir_list" "$diag"
+      mark_done "$diag.done" "$sig"
+    fi
+    require "$diag/extended_models"
+    while read -r room spec; do log "stage 5:   extended model of room $room: $spec"; done <"$diag/extended_models"
+    out=$rirs/gas_ext_all
+    sig="$(cat "$diag.done") $(md5sum <"$diag/extended_models") $(md5sum <"$rirs/gas_all/room_list") $(md5sum <"$conf/rir-simulate.conf")"
+    if is_done "$out/.done" "$sig"; then
+      log "stage 5:   GAS-ext RIRs already simulated"
+    else
+      rm -rf "$out/rooms" "$out/log"; rm -f "$out/rir.scp" "$out/rir_list" "$out/.done"
+      mkdir -p "$out/rooms"
+      # One rir-simulate run per room (each room has its own extended model). A room without
+      # training RIRs has no fitted model: it keeps the baseline, and the log says so.
+      awk '{ for (i = 2; i <= NF; i++) if ($i ~ /^room-id=/) { r = substr($i, 9); print > (dir "/" r ".room_list") } }' \
+        dir="$out/rooms" <(grep -v '^#' "$rirs/gas_all/room_list")
+      for rl in "$out"/rooms/*.room_list; do
+        room=$(basename "$rl" .room_list)
+        spec=$(awk -v r="$room" '$1 == r { print $2 }' "$diag/extended_models")
+        [ -n "$spec" ] || { spec=$sim_model; log "stage 5:   room $room has no training RIRs: GAS-ext = $sim_model there"; }
+        # Float samples: the transducer extension carries the measured chain's gain (~18 dB on
+        # R3VIVAL), which can pass 16-bit full scale; the toolkit's wav-reverberate reads float.
+        run_logged "$out/log/simulate.$room.log" rir-simulate --config="$conf/rir-simulate.conf" --model="$spec" \
+          --seed="$seed" --format=float --num-threads="$num_threads" "$rl" "$out/rooms/$room"
+      done
+      cat "$out"/rooms/*/rir.scp | sort >"$out/rir.scp"
+      cat "$out"/rooms/*/rir_list | sort -k2,2 >"$out/rir_list"
+      [ "$(count "$out/rir.scp")" -eq "$(count "$rirs/gas_all/rir.scp")" ] ||
+        die "GAS-ext has $(count "$out/rir.scp") RIRs, GAS $(count "$rirs/gas_all/rir.scp") (logs: $out/log)"
+      mark_done "$out/.done" "$sig"
+    fi
+    for split in train test; do
+      local/subset_rir_set.sh "$rirs/split/$split.ids" "$out" "$rirs/gas_ext_$split"
+      mark_done "$rirs/gas_ext_$split/.done" "gas_ext: $sig $(md5sum <"$rirs/gas_ext_$split/rir.scp")"
+    done
+    log "stage 5:   GAS-ext: $(count "$rirs/gas_ext_train/rir.scp") train, $(count "$rirs/gas_ext_test/rir.scp") test RIRs in $rirs/gas_ext_{train,test} (diagnosis: $diag/report.html)"
+  fi
   end_stage 5 "$(for s in $rir_sets; do printf '%s ' "$(set_label "$s")"; done)for train and test in $rirs"
 fi
 
@@ -540,12 +594,15 @@ if [ $stage -le 8 ] && [ $stop_stage -ge 8 ]; then
     proxy)
       begin_stage 8 "proxy recogniser (asr-train/asr-decode) per training set and seed ($asr_seeds), Table 2"
       need_program asr-train asr-decode reverberate-data
-      proxy_opts=(--train-sets "$train_sets" --seeds "$asr_seeds" --snrs "$snrs" --num-threads "$asr_num_threads" --nj "$nj")
+      # The real-speech test set reads ../shared/data/speech in place (skipped when absent).
+      proxy_opts=(--train-sets "$train_sets" --seeds "$asr_seeds" --snrs "$snrs" --num-threads "$asr_num_threads"
+                  --jobs "$asr_jobs" --nj "$nj" --train-config "$(readlink -f "$asr_train_config")"
+                  --real-speech "$shared_data/speech")
       [ -n "$asr_corpus_opts" ] && proxy_opts+=(--corpus-opts "$asr_corpus_opts")
       [ -n "$asr_train_opts" ] && proxy_opts+=(--train-opts "$asr_train_opts")
       table2=$(local/asr/run_proxy.sh "${proxy_opts[@]}" "$rirs" "$data/noise/noise_list" "$data" "$exp") ||
         die "stage 8 proxy failed (logs: $exp/asr/log)"
-      title="CER and WER (%) of the proxy recogniser on TTS test voices ⊛ held-out real test RIRs + real noise (local/asr/run_proxy.sh)"
+      title="CER and WER (%) of the proxy recogniser on test speech ⊛ held-out real test RIRs + real noise (local/asr/run_proxy.sh)"
       ;;
     *) die "--asr must be kaldi or proxy, got '$asr'" ;;
   esac

@@ -8,18 +8,25 @@
 
 #include "asr/asr_features.h"
 #include "asr/asr_text.h"
+#include "util/options.h"
 
 namespace tsrir {
+
+enum class RnnType { kGru, kLstm };
+const char* rnn_type_name(RnnType type);  // "gru" | "lstm" (the settings.txt spelling)
 
 struct AsrModelConfig {
   int conv_layers = 2;
   int conv_channels = 256;
   int conv_kernel = 5;
   int subsampling = 2;          // stride of the first convolution
-  std::string rnn_type = "gru"; // gru | lstm
+  RnnType rnn_type = RnnType::kGru;
   int rnn_layers = 2;
   int rnn_hidden = 192;         // per direction
   double dropout = 0.1;
+
+  void Register(OptionsItf* opts);
+  void validate() const;        // Error naming the option
 };
 
 struct AsrTrainOptions {
@@ -29,7 +36,7 @@ struct AsrTrainOptions {
   AsrModelConfig model;
   int epochs = 20;              // total epochs (a resumed run continues to this count)
   double max_minutes = 0.0;     // > 0: stop (with a checkpoint) after this much training time
-  uint64_t seed = 0;
+  Seed seed = 0;
   int num_threads = 1;
   int batch_size = 16;          // utterances per step (batches are made of similar lengths)
   double learning_rate = 1e-3;  // Adam
@@ -40,6 +47,11 @@ struct AsrTrainOptions {
   int max_freq_mask = 6;        // mel bins
   bool resume = false;
   double progress_interval_s = 10.0;
+
+  // Every option of asr-train (the features' and the network's nested); the two directories are
+  // positional arguments, which the program fills in.
+  void Register(OptionsItf* opts);
+  void validate() const;        // Error naming the option
 };
 
 struct AsrTrainResult {
@@ -62,6 +74,9 @@ struct AsrDecodeOptions {
   std::string out_dir;          // hyp, wer, cer, utt_errors (each written atomically)
   int num_threads = 1;
   int batch_size = 16;
+
+  void Register(OptionsItf* opts);
+  void validate() const;
 };
 
 struct AsrDecodeResult {

@@ -6,7 +6,7 @@
 #include "asr/asr_text.h"
 #include "io/audio_io.h"
 #include "io/data_dir.h"
-#include "util/cli.h"
+#include "io/owned_output.h"
 #include "util/error.h"
 #include "util/parallel.h"
 
@@ -18,6 +18,9 @@ std::vector<AsrUtterance> load_asr_utterances(const std::string& dir, const LogM
   const std::vector<std::string> ids = data.utterances();
   if (ids.empty()) throw Error(dir + ": the data dir has no utterances");
   if (require_text && data.text.empty()) throw Error(dir + "/text: missing (training needs transcripts)");
+  // Inputs, so that no output of the program can be, contain or lie inside them (io/owned_output.h).
+  note_input(dir);
+  for (const auto& [recording, rx] : data.wav_scp) note_input(rx);
   std::vector<AsrUtterance> utts(ids.size());
   parallel_for(ids.size(), num_threads, [&](size_t i) {
     AsrUtterance& u = utts[i];

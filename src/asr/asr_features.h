@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "util/options.h"
+
 namespace tsrir {
 
 struct LogMelOptions {
@@ -27,6 +29,11 @@ struct LogMelOptions {
   double low_hz = 20.0;
   double high_hz = 7600.0;          // <= 0: offset from Nyquist (Kaldi's convention)
   double preemphasis = 0.97;
+
+  // Kaldi's names where Kaldi's compute-fbank-feats has the option (--num-mel-bins, --low-freq,
+  // --high-freq, --frame-length, --frame-shift, --preemphasis-coefficient, --sample-frequency as
+  // an alias of --sample-rate).
+  void Register(OptionsItf* opts);
 };
 
 // Row-major [num_frames x num_mel_bins].

@@ -42,7 +42,7 @@ AsrSettings asr_settings_of(const AsrTrainOptions& o) {
   s["conv-channels"] = std::to_string(o.model.conv_channels);
   s["conv-kernel"] = std::to_string(o.model.conv_kernel);
   s["subsampling"] = std::to_string(o.model.subsampling);
-  s["rnn-type"] = o.model.rnn_type;
+  s["rnn-type"] = rnn_type_name(o.model.rnn_type);
   s["rnn-layers"] = std::to_string(o.model.rnn_layers);
   s["rnn-hidden"] = std::to_string(o.model.rnn_hidden);
   s["dropout"] = num(o.model.dropout);
@@ -115,7 +115,9 @@ AsrModelConfig model_config_of(const AsrSettings& s, const std::string& where) {
   m.conv_channels = get_int(s, "conv-channels", where);
   m.conv_kernel = get_int(s, "conv-kernel", where);
   m.subsampling = get_int(s, "subsampling", where);
-  m.rnn_type = get(s, "rnn-type", where);
+  const std::string& rnn = get(s, "rnn-type", where);
+  if (rnn != "gru" && rnn != "lstm") throw Error(where + ": rnn-type must be gru or lstm, got '" + rnn + "'");
+  m.rnn_type = rnn == "lstm" ? RnnType::kLstm : RnnType::kGru;
   m.rnn_layers = get_int(s, "rnn-layers", where);
   m.rnn_hidden = get_int(s, "rnn-hidden", where);
   m.dropout = get_double(s, "dropout", where);

@@ -15,8 +15,9 @@
 #include "asr/asr_settings.h"
 #include "gan/gan_runtime.h"
 #include "io/atomic_output.h"
-#include "util/cli.h"
+#include "io/owned_output.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/rng.h"
 #include "util/strings.h"
 
@@ -44,7 +45,7 @@ struct CtcModelImpl : torch::nn::Module {
     }
     norm = register_module("norm", torch::nn::LayerNorm(torch::nn::LayerNormOptions({int64_t(in)})));
     const double between = c.rnn_layers > 1 ? c.dropout : 0.0;
-    if (c.rnn_type == "gru") {
+    if (c.rnn_type == RnnType::kGru) {
       gru = register_module("rnn", torch::nn::GRU(torch::nn::GRUOptions(in, c.rnn_hidden)
                                                       .num_layers(c.rnn_layers)
                                                       .bidirectional(true)
@@ -92,16 +93,6 @@ struct CtcModelImpl : torch::nn::Module {
   torch::nn::Linear output{nullptr};
 };
 TORCH_MODULE(CtcModel);
-
-void validate(const AsrModelConfig& c) {
-  if (c.conv_layers < 1 || c.conv_channels < 1 || c.conv_kernel < 1 || c.conv_kernel % 2 == 0) {
-    throw Error("--conv-layers and --conv-channels must be >= 1 and --conv-kernel odd");
-  }
-  if (c.subsampling < 1 || c.subsampling > 4) throw Error("--subsampling must be 1..4");
-  if (c.rnn_type != "gru" && c.rnn_type != "lstm") throw Error("--rnn-type must be gru or lstm, got '" + c.rnn_type + "'");
-  if (c.rnn_layers < 1 || c.rnn_hidden < 1) throw Error("--rnn-layers and --rnn-hidden must be >= 1");
-  if (!(c.dropout >= 0 && c.dropout < 1)) throw Error("--dropout must be in [0, 1)");
-}
 
 long long count_parameters(CtcModel& model) {
   long long n = 0;
@@ -263,15 +254,7 @@ void write_log(const std::string& path, const std::vector<std::string>& rows) {
 }  // namespace
 
 AsrTrainResult train_asr(const AsrTrainOptions& o) {
-  validate(o.model);
-  if (o.epochs < 1) throw Error("--epochs must be >= 1");
-  if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
-  if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
-  if (!(o.learning_rate > 0) || !std::isfinite(o.learning_rate)) throw Error("--learning-rate must be > 0");
-  if (!(o.max_minutes >= 0)) throw Error("--max-minutes must be >= 0");
-  if (!(o.max_time_mask >= 0 && o.max_time_mask < 1) || o.time_masks < 0 || o.freq_masks < 0 || o.max_freq_mask < 0) {
-    throw Error("SpecAugment settings must be >= 0 (--max-time-mask below 1)");
-  }
+  o.validate();
   tune_malloc_for_training();
   set_openblas_threads(1);
   torch::set_num_threads(o.num_threads);
@@ -312,6 +295,8 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
   log_info("loaded " + std::to_string(utts.size()) + " utterances (" + format_double(hours, 3) + " h) from " +
            o.data_dir + " in " + format_double(seconds_since(load_start), 3) + " s");
 
+  // The model dir is the toolkit's (io/owned_output.h): never a user's dir, never an input.
+  claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
   fs::create_directories(o.model_dir);
   if (!o.resume) write_asr_settings(settings_path, settings);
 
@@ -342,7 +327,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
   result.first_epoch = p.epoch + 1;
   log_info("model: " + std::to_string(result.num_parameters) + " parameters (" + std::to_string(o.model.conv_layers) +
            " conv x " + std::to_string(o.model.conv_channels) + ", " + std::to_string(o.model.rnn_layers) + " bi-" +
-           o.model.rnn_type + " x " + std::to_string(o.model.rnn_hidden) + "), " + std::to_string(o.num_threads) +
+           rnn_type_name(o.model.rnn_type) + " x " + std::to_string(o.model.rnn_hidden) + "), " + std::to_string(o.num_threads) +
            " thread(s)");
 
   const auto batches = length_batches(utts, o.batch_size);
@@ -430,17 +415,18 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
 }
 
 AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
-  if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
-  if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
+  o.validate();
   set_openblas_threads(1);
   torch::set_num_threads(o.num_threads);
   const auto start = Clock::now();
   const std::string settings_path = (fs::path(o.model_dir) / "settings.txt").string();
   const std::string checkpoint_path = (fs::path(o.model_dir) / "checkpoint.pt").string();
+  note_input(settings_path);
+  note_input(checkpoint_path);
   const AsrSettings settings = read_asr_settings(settings_path);
   const LogMelOptions features = feature_options_of(settings, settings_path);
   const AsrModelConfig config = model_config_of(settings, settings_path);
-  validate(config);
+  config.validate();
   CtcModel model(config, features.num_mel_bins);
   {
     torch::serialize::InputArchive archive;
@@ -473,12 +459,17 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
   AsrDecodeResult result;
   result.num_utterances = utts.size();
   result.scored = !utts.empty() && std::any_of(utts.begin(), utts.end(), [](const AsrUtterance& u) { return !u.text.empty(); });
-  fs::create_directories(o.out_dir);
-  AtomicTextFile hyp_file((fs::path(o.out_dir) / "hyp").string());
-  for (size_t i = 0; i < utts.size(); ++i) hyp_file.stream() << utts[i].id << (hyps[i].empty() ? "" : " ") << hyps[i] << '\n';
+  // The four files appear together, or none of them (an owned output dir: io/owned_output.h).
+  OwnedOutputDir out(o.out_dir);
+  const auto open = [&](const std::string& name) {
+    return std::ofstream((fs::path(out.path()) / name).string());
+  };
+  std::ofstream hyp_file = open("hyp");
+  for (size_t i = 0; i < utts.size(); ++i) hyp_file << utts[i].id << (hyps[i].empty() ? "" : " ") << hyps[i] << '\n';
+  bool ok = bool(hyp_file.flush());
   if (result.scored) {
-    AtomicTextFile per_utt((fs::path(o.out_dir) / "utt_errors").string());
-    per_utt.stream() << "# utt ref_words word_errors ins del sub ref_chars char_errors ins del sub\n";
+    std::ofstream per_utt = open("utt_errors");
+    per_utt << "# utt ref_words word_errors ins del sub ref_chars char_errors ins del sub\n";
     size_t word_sentence_errors = 0, char_sentence_errors = 0;
     for (size_t i = 0; i < utts.size(); ++i) {
       const EditCounts w = count_edits(word_tokens(utts[i].text), word_tokens(hyps[i]));
@@ -487,19 +478,18 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
       result.characters += c;
       word_sentence_errors += w.errors() > 0;
       char_sentence_errors += c.errors() > 0;
-      per_utt.stream() << utts[i].id << ' ' << w.ref_length << ' ' << w.errors() << ' ' << w.insertions << ' '
-                       << w.deletions << ' ' << w.substitutions << ' ' << c.ref_length << ' ' << c.errors() << ' '
-                       << c.insertions << ' ' << c.deletions << ' ' << c.substitutions << '\n';
+      per_utt << utts[i].id << ' ' << w.ref_length << ' ' << w.errors() << ' ' << w.insertions << ' ' << w.deletions
+              << ' ' << w.substitutions << ' ' << c.ref_length << ' ' << c.errors() << ' ' << c.insertions << ' '
+              << c.deletions << ' ' << c.substitutions << '\n';
     }
-    AtomicTextFile wer((fs::path(o.out_dir) / "wer").string());
-    wer.stream() << format_compute_wer(result.words, word_sentence_errors, utts.size(), 0);
-    AtomicTextFile cer((fs::path(o.out_dir) / "cer").string());
-    cer.stream() << format_compute_wer(result.characters, char_sentence_errors, utts.size(), 0);
-    per_utt.commit();
-    wer.commit();
-    cer.commit();
+    std::ofstream wer = open("wer");
+    wer << format_compute_wer(result.words, word_sentence_errors, utts.size(), 0);
+    std::ofstream cer = open("cer");
+    cer << format_compute_wer(result.characters, char_sentence_errors, utts.size(), 0);
+    ok = ok && per_utt.flush() && wer.flush() && cer.flush();
   }
-  hyp_file.commit();
+  if (!ok) throw Error("cannot write the decoding results into " + o.out_dir);
+  out.commit();
   result.decode_s = seconds_since(start);
   result.peak_rss_mb = peak_rss_mb();
   return result;

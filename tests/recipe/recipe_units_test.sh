@@ -185,6 +185,68 @@ check "collect_wer: best WER per decode, paper's row names and order" \
 check "collect_wer: missing decodes are counted" bash -c "echo '$table' | grep -q '(9 decode(s) missing'"
 expect_fail "collect_wer: no WER at all is an error" local/collect_wer.sh --sets clean "$k"
 
+# ---- asr/table2.sh: the proxy's Table 2 from fabricated per-utterance errors ----
+# 10 utterances of 20 characters and 5 words. Test A: clean 10 character errors each (50 %),
+# real 5 (seed 0) and 3 (seed 1) -> 25 % and 15 %, mean 20, sd 7.07; GAS 6 (30 %). Test B: every set
+# 8 errors (40 %). Real vs GAS: all 10 utterances one way, exact two-sided p = 2 / 2^10 = 0.00195.
+e=$tmp/asr_exp
+mkerr() {  # <set> <seed> <test> <char-errors> <word-errors>
+  local d=$e/${1}_seed$2/decode_$3 u
+  mkdir -p "$d"
+  { echo "# utt ref_words word_errors ins del sub ref_chars char_errors ins del sub"
+    for u in 01 02 03 04 05 06 07 08 09 10; do echo "u$u 5 $5 0 0 $5 20 $4 0 0 $4"; done; } >"$d/utt_errors"
+}
+for k in 0 1; do
+  mkerr clean $k A 10 5; mkerr gas $k A 6 3; mkerr real $k A $((k == 0 ? 5 : 3)) 2
+  for s in clean gas real; do mkerr $s $k B 8 2; done
+done
+t2=$(local/asr/table2.sh --sets "clean real gas" --seeds "0 1" --tests "A B" --titles "test A|test B" "$e" 2>&1)
+row() { echo "$t2" | grep "^| $1 |"; }
+check "table2: header with a column group per test" \
+  test "$(echo "$t2" | head -1)" = "| training RIR set | CER % (test A) | WER % | CER vs GAS | p (paired, 10 utts) | CER % (test B) | WER % | CER vs GAS | p (paired, 10 utts) |"
+check "table2: clean: mean CER/WER over seeds, +66.7 % vs GAS (50 vs 30 %), p < 0.005" \
+  bash -c "echo '$(row 'clean (no RIR)')' | awk -F'|' '\$3 == \" 50.00 ± 0.00 \" && \$4 == \" 100.00 ± 0.00 \" && \$5 == \" +66.7 % \" && \$6 + 0 < 0.005 && \$6 + 0 > 0.001 {ok = 1} END {exit !ok}'"
+check "table2: real: 20.00 ± 7.07 % CER, 40 % WER, -33.3 % vs GAS" \
+  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$3 == \" 20.00 ± 7.07 \" && \$4 == \" 40.00 ± 0.00 \" && \$5 == \" -33.3 % \" {ok = 1} END {exit !ok}'"
+check "table2: test B: equal errors -> +0.0 % and p = 1" \
+  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$7 == \" 40.00 ± 0.00 \" && \$9 == \" +0.0 % \" && \$10 == \" 1.0000 \" {ok = 1} END {exit !ok}'"
+check "table2: the GAS row has no comparison" bash -c "echo '$(row GAS)' | grep -q '| — | — |'"
+check "table2: sensitivity PASS on test A (60 % reduction), FAIL on test B (0 %)" \
+  bash -c "echo \"\$1\" | grep -q 'Sensitivity (test A): real (oracle) vs clean: CER 20.00 vs 50.00 %, 60.0 % relative reduction, paired p = 0.00[0-9]* (PASS' &&
+           echo \"\$1\" | grep -q 'Sensitivity (test B): .* 0.0 % relative reduction, paired p = 1.0000 (FAIL'" _ "$t2"
+rm "$e/gas_seed1/decode_B/utt_errors"
+expect_fail "table2: a missing decode is an error" local/asr/table2.sh --sets "clean real gas" --seeds "0 1" --tests "A B" "$e"
+
+# ---- asr/make_real_speech_dir.sh: the real-speech test set from a speech tree like ../shared/data/speech ----
+rs=$tmp/speech
+mkdir -p "$rs/librispeech" "$rs/pocketsphinx/cards"
+for f in librispeech/11-22-0001.wav pocketsphinx/book-0870.wav pocketsphinx/cards/001.wav; do
+  sox -n -r 16000 -b 16 -c 1 "$rs/$f" synth 0.5 sine 300 gain -10
+done
+sox -n -r 16000 -b 16 -c 1 "$rs/librispeech/33-44-0000.flac" synth 0.5 sine 300 gain -10
+sox -n -r 16000 -b 16 -c 1 "$rs/librispeech/33-44-0009.flac" synth 0.5 sine 300 gain -10   # no transcript
+printf '11-22-0001\tHELLO WORLD\n' >"$rs/librispeech/trans.txt"
+printf 'lbi-33-44-0000 A FLAC LINE\n' >"$rs/librispeech/mini_librispeech_text.txt"
+printf '<s> he was not </s> (book-0870)\n' >"$rs/pocketsphinx/transcription"
+printf '<s> ten of clubs </s> (001)\n' >"$rs/pocketsphinx/cards/cards.transcription"
+local/asr/make_real_speech_dir.sh "$rs" "$tmp/rs_dir" 2>/dev/null
+check "real speech: every transcribed utterance, none without a transcript" \
+  test "$(cut -d' ' -f1 "$tmp/rs_dir/text" | tr '\n' ' ')" = "11-22-0001 33-44-0000 ps-austen-0870 ps-cards-001 "
+check "real speech: transcripts and speakers as given" \
+  bash -c "grep -qx 'ps-cards-001 ten of clubs' '$tmp/rs_dir/text' && grep -qx '33-44-0000 33-44' '$tmp/rs_dir/utt2spk'"
+check "real speech: a valid data dir whose FLAC pipe decodes" \
+  bash -c "validate-data-dir --no-feats '$tmp/rs_dir' 2>/dev/null && bash -c \"\$(awk '/flac/ {\$1 = \"\"; sub(/ [|]\$/, \"\"); print}' '$tmp/rs_dir/wav.scp')\" | sox -t wav - -n stat 2>&1 | grep -q 'Length (seconds): *0.500000'"
+local/asr/make_real_speech_dir.sh "$tmp/no_speech" "$tmp/rs_none" 2>/dev/null
+check "real speech: an absent speech dir exits 2 (the caller skips the test set)" test $? -eq 2
+
+# ---- remove_tsrir_files.sh: only what tsrir wrote goes ----
+mkdir -p "$tmp/owned"
+echo a >"$tmp/owned/a.wav"; echo mine >"$tmp/owned/notes.txt"
+printf '# tsrir\na.wav\t2\t0\tprog\t.\n' >"$tmp/owned/.tsrir-owned"
+local/remove_tsrir_files.sh "$tmp/owned" 2>/dev/null
+check "remove_tsrir_files: the listed file and the marker go, a user's file and the dir stay" \
+  bash -c "test ! -e '$tmp/owned/a.wav' && test ! -e '$tmp/owned/.tsrir-owned' && test -f '$tmp/owned/notes.txt'"
+
 # ---- the demo corpus's stand-ins (a clone without ../shared/data) ----
 local/make_demo_data.sh --size tiny --shared-data "$tmp/no_shared_data" --seed 1 "$tmp/demo_standin" 2>"$tmp/standin.log"
 check "stand-ins: demo corpus made without ../shared/data" test -f "$tmp/demo_standin/SOURCES"

@@ -22,7 +22,7 @@ label() {
   case $1 in
     clean) echo "clean (Baseline)" ;; real) echo "real (Oracle)" ;; gas) echo "GAS" ;;
     gas_eq) echo "GAS+EQ" ;; gas_eq_gsr) echo "G(GAS+EQ)" ;; gas_gsr) echo "G(GAS)" ;;
-    gas_gsr_eq) echo "G(GAS)+EQ" ;; *) echo "$1" ;;
+    gas_gsr_eq) echo "G(GAS)+EQ" ;; gas_ext) echo "GAS-ext" ;; *) echo "$1" ;;
   esac
 }
 # The best %WER of a decode directory, or "-" when it has no wer_* file.
