@@ -1,9 +1,11 @@
 #include "util/cleanup.h"
 
-#include <ftw.h>
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
-#include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <mutex>
 
@@ -17,9 +19,62 @@ char g_paths[kMaxTemps][kMaxPath];
 volatile bool g_used[kMaxTemps];
 std::mutex g_mutex;
 
-int remove_entry(const char* path, const struct stat*, int, struct FTW*) {
-  ::remove(path);
-  return 0;
+// Staging trees are a directory of files (a data dir, a wav dir); a few levels suffice, and the
+// bound keeps the handler's stack use small (one dirent buffer per level).
+constexpr int kMaxDepth = 8;
+
+// Everything below runs inside a signal handler that may have interrupted malloc, so it uses only
+// async-signal-safe system calls: no opendir/readdir (they allocate), no nftw, no stdio. A heap
+// call here once aborted rir-simulate with "malloc assertion failure in sysmalloc" when SIGINT
+// landed inside a malloc of its worker.
+struct LinuxDirent64 {
+  ino64_t d_ino;
+  off64_t d_off;
+  unsigned short d_reclen;
+  unsigned char d_type;
+  char d_name[];
+};
+
+void remove_children_at(int dir_fd, int depth) {
+  alignas(8) char buffer[2048];
+  // Entries removed while listing may shift the directory's offsets: list again from the start
+  // until a pass removes nothing.
+  for (int pass = 0; pass < 64; ++pass) {
+    bool removed_any = false;
+    if (lseek(dir_fd, 0, SEEK_SET) < 0) return;
+    for (;;) {
+      const long n = syscall(SYS_getdents64, dir_fd, buffer, sizeof buffer);
+      if (n <= 0) break;
+      for (long offset = 0; offset < n;) {
+        const auto* entry = reinterpret_cast<const LinuxDirent64*>(buffer + offset);
+        offset += entry->d_reclen;
+        const char* name = entry->d_name;
+        if (name[0] == '.' && (name[1] == 0 || (name[1] == '.' && name[2] == 0))) continue;
+        if (unlinkat(dir_fd, name, 0) == 0) {
+          removed_any = true;
+          continue;
+        }
+        if ((errno == EISDIR || errno == EPERM) && depth < kMaxDepth) {
+          const int child = openat(dir_fd, name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+          if (child >= 0) {
+            remove_children_at(child, depth + 1);
+            close(child);
+          }
+          if (unlinkat(dir_fd, name, AT_REMOVEDIR) == 0) removed_any = true;
+        }
+      }
+    }
+    if (!removed_any) return;
+  }
+}
+
+void remove_tree_signal_safe(const char* path) {
+  if (unlink(path) == 0) return;
+  const int dir = open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (dir < 0) return;
+  remove_children_at(dir, 0);
+  close(dir);
+  rmdir(path);
 }
 
 }  // namespace
@@ -49,9 +104,7 @@ void unregister_temp_path(const std::string& path) {
 void remove_registered_temps_on_signal() {
   for (int i = 0; i < kMaxTemps; ++i) {
     if (g_used[i]) {
-      // Depth-first so directories are empty when removed.
-      nftw(g_paths[i], remove_entry, 16, FTW_DEPTH | FTW_PHYS);
-      ::remove(g_paths[i]);
+      remove_tree_signal_safe(g_paths[i]);
       g_used[i] = false;
     }
   }

@@ -8,7 +8,8 @@ namespace tsrir {
 
 void register_temp_path(const std::string& path);
 void unregister_temp_path(const std::string& path);
-// Removes every registered temporary file or directory; called from the signal handler.
+// Removes every registered temporary file or directory; called from the signal handler, so it is
+// async-signal-safe (system calls only, no heap).
 void remove_registered_temps_on_signal();
 
 }  // namespace tsrir
