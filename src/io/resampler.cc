@@ -54,6 +54,12 @@ const sox_effect_handler_t* sink_handler() {
   return &h;
 }
 
+// libsox is not thread-safe: its rate effect grows process-global tables (the FFT cache of
+// effects_i_dsp.c) on first use of each size, and concurrent first calls corrupted the heap
+// (tests/io Resampler.ConcurrentFirstCallsOfAProcessEqualSerialCalls). Every chain runs under this
+// lock; callers resample each RIR or noise once and cache it, so the serialisation costs little.
+std::mutex g_sox_mutex;
+
 // sox_init() once per process (it sets up libsox's globals and its FFT cache).
 void init_sox() {
   static std::once_flag once;
@@ -97,6 +103,7 @@ std::vector<float> resample(const std::vector<float>& samples, double from_hz, d
                 format_double(kMaxResampleRatio));
   }
   if (std::fabs(from_hz - to_hz) < 1e-9 || samples.empty()) return samples;
+  std::lock_guard<std::mutex> sox_lock(g_sox_mutex);
   init_sox();
   double peak = 0.0;
   for (float v : samples) peak = std::max(peak, static_cast<double>(std::fabs(v)));

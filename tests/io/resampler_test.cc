@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <thread>
 
 #include "util/error.h"
@@ -46,6 +47,30 @@ TEST(Resampler, ConcurrentCallsEqualSerialCalls) {
     EXPECT_EQ(parallel[i], serial[i]) << "job " << i;
     EXPECT_EQ(serial[i].size(), static_cast<size_t>(std::llround(jobs[i].in.size() * jobs[i].to / jobs[i].from)));
   }
+}
+
+// The first calls of a process, made at the same time: libsox grows global tables (its FFT cache)
+// on first use of each size, which is where concurrent first calls corrupted the heap
+// (reverberate-data --num-threads 2 resampling 48 kHz R3VIVAL RIRs aborted in malloc in 2 of 4
+// runs). ConcurrentCallsEqualSerialCalls cannot see that: its serial pass warms the tables first.
+// Each trial runs in a fresh process (threadsafe death-test style re-executes this test alone).
+TEST(Resampler, ConcurrentFirstCallsOfAProcessEqualSerialCalls) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  auto trial = [] {
+    const double rates[][2] = {{48000, 16000}, {44100, 16000}, {16000, 48000}, {48000, 8000},
+                               {22050, 16000}, {96000, 16000}, {8000, 44100}, {32000, 16000}};
+    constexpr int kJobs = 8;
+    std::vector<std::vector<float>> in, parallel(kJobs);
+    for (int i = 0; i < kJobs; ++i) in.push_back(noise(100 + i, 48001));
+    std::vector<std::thread> threads;
+    for (int i = 0; i < kJobs; ++i)
+      threads.emplace_back([&, i] { parallel[i] = resample(in[i], rates[i][0], rates[i][1]); });
+    for (auto& th : threads) th.join();
+    for (int i = 0; i < kJobs; ++i)
+      if (resample(in[i], rates[i][0], rates[i][1]) != parallel[i]) std::exit(10 + i);
+    std::exit(0);
+  };
+  for (int t = 0; t < 8; ++t) EXPECT_EXIT(trial(), ::testing::ExitedWithCode(0), "") << "trial " << t;
 }
 
 TEST(Resampler, RejectsBadRatesAndKeepsEqualRates) {
