@@ -54,10 +54,13 @@ const sox_effect_handler_t* sink_handler() {
   return &h;
 }
 
-// libsox is not thread-safe: its rate effect grows process-global tables (the FFT cache of
-// effects_i_dsp.c) on first use of each size, and concurrent first calls corrupted the heap
-// (tests/io Resampler.ConcurrentFirstCallsOfAProcessEqualSerialCalls). Every chain runs under this
-// lock; callers resample each RIR or noise once and cache it, so the serialisation costs little.
+// libsox cannot be used from two threads at once: concurrent FIRST calls of a process corrupted the
+// heap (Debian's OpenMP build, libsox3 14.4.2; tests/io
+// Resampler.ConcurrentFirstCallsOfAProcessEqualSerialCalls aborts without this lock), while calls
+// after a serial warm-up of the same conversions never did. The likely culprit is process-global
+// state that the rate effect sets up on first use (the shared FFT cache of effects_i_dsp.c); it was
+// not pinned down further. Every chain runs under this lock; callers resample each RIR or noise
+// once and cache it, so the serialisation costs little.
 std::mutex g_sox_mutex;
 
 // sox_init() once per process (it sets up libsox's globals and its FFT cache).

@@ -1,8 +1,8 @@
 // Sample-rate conversion with libsox's "rate -v" (very high quality, linear phase), apart from
 // audio file I/O. Each call builds its own effects chain; calls from several threads are safe but
-// run one at a time under one process-wide lock, because libsox's process-global FFT cache is not
-// safe to grow from two threads (Debian's libsox corrupted the heap without the lock). Every
-// libsox handle is owned by RAII, so an error cannot leak a chain.
+// run one at a time under one process-wide lock, because concurrent first calls into libsox
+// corrupted the heap (see resampler.cc). Every libsox handle is owned by RAII, so an error cannot
+// leak a chain.
 #pragma once
 #include <vector>
 

@@ -49,8 +49,8 @@ TEST(Resampler, ConcurrentCallsEqualSerialCalls) {
   }
 }
 
-// The first calls of a process, made at the same time: libsox grows global tables (its FFT cache)
-// on first use of each size, which is where concurrent first calls corrupted the heap
+// The first calls of a process, made at the same time: libsox sets up process-global state on
+// first use of a conversion, and concurrent first calls corrupted the heap
 // (reverberate-data --num-threads 2 resampling 48 kHz R3VIVAL RIRs aborted in malloc in 2 of 4
 // runs). ConcurrentCallsEqualSerialCalls cannot see that: its serial pass warms the tables first.
 // Each trial runs in a fresh process (threadsafe death-test style re-executes this test alone).
