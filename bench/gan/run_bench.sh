@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# TS-RIRGAN speed and memory: training step time and peak RSS at width 16 and 64 (batch 4, both
-# decoders at 64), generator forward throughput against the FLOP count (gan_forward_bench), and
+# TS-RIRGAN speed and memory: training step time and peak RSS at width 16 and 64 (batch 4; the
+# program's defaults and the paper's configuration, conf/ts-rirgan-paper.conf), generator forward throughput against the FLOP count (gan_forward_bench), and
 # gas-to-real throughput at width 64 (decoders x precisions, batched and unbatched). Inputs: the 170 measured R3VIVAL RIRs
 # (48 kHz, resampled to 16 kHz by the programs) as both domains; the content does not change the
 # cost. Step times are the median of the logged per-step wall times after the first (warm-up) step.
@@ -31,18 +31,26 @@ median_step() { awk -F, 'NR>2{print $NF}' "$1" | sort -g | awk '{a[NR]=$1} END{p
 echo "| run | median wall s/step | CPU s/step (process) | peak RSS MB |"
 echo "|---|---|---|---|"
 export OPENBLAS_NUM_THREADS=1
-for spec in "16 12 1 original float32" "16 12 $threads original float32" "16 12 $threads original bfloat16" \
-    "64 $steps64 $threads original float32" "64 $steps64 $threads original bfloat16" "64 $steps64 $threads light float32"; do
+# "paper" = --config=conf/ts-rirgan-paper.conf (the original's iteration: 2 x (D_R, D_S) updates,
+# then G_SR and G_RS each with its own graph); "defaults" = the program's defaults (residual
+# generator, light decoder, one D update, joint G update); --width, --batch-size, --steps,
+# --precision and --num-threads are given either way (they come after --config, so they win).
+# The translation rows below use the width-64 models trained here.
+for spec in "16 12 1 defaults float32" "16 12 $threads defaults float32" "16 12 $threads defaults bfloat16" \
+    "16 12 1 paper float32" "16 12 $threads paper float32" "16 12 $threads paper bfloat16" \
+    "64 $steps64 $threads paper float32" "64 $steps64 $threads paper bfloat16" "64 $steps64 $threads defaults float32"; do
   set -- $spec
-  w=$1; s=$2; t=$3; dec=$4; prec=$5
-  m=$work/m${w}_t${t}_$dec
+  w=$1; s=$2; t=$3; cfg=$4; prec=$5
+  m=$work/m${w}_t${t}_$cfg
   [[ $prec == float32 ]] || m=${m}_$prec
-  /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$bin/ts-rirgan-train" --real="$work/rir.scp" \
-    --synthetic="$work/rir.scp" --width=$w --decoder=$dec --precision=$prec --batch-size=4 --steps=$s --num-threads=$t \
+  opts=()
+  [[ $cfg == paper ]] && opts+=(--config="$here/conf/ts-rirgan-paper.conf")
+  /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$bin/ts-rirgan-train" "${opts[@]}" --real="$work/rir.scp" \
+    --synthetic="$work/rir.scp" --width=$w --precision=$prec --batch-size=4 --steps=$s --num-threads=$t \
     --checkpoint-every=100000 --progress-interval=60 "$m" 2> "$work/log"
   read -r wall user sys rss < "$work/time"
   cpu=$(awk -v u="$user" -v s="$sys" -v n="$s" 'BEGIN{printf "%.3f", (u+s)/n}')
-  echo "| train width $w ($dec decoder, $prec), batch 4, $t thread(s), $s steps (CPU/step includes loading $n RIRs) | $(median_step "$m/loss_log.csv") | $cpu | $((rss / 1024)) |"
+  echo "| train width $w ($cfg, $prec), batch 4, $t thread(s), $s steps (CPU/step includes loading $n RIRs) | $(median_step "$m/loss_log.csv") | $cpu | $((rss / 1024)) |"
 done
 if [[ ${PROFILE:-0} == 1 ]]; then
   perf record -q -o "$work/perf.data" "$bin/ts-rirgan-train" --real="$work/rir.scp" --synthetic="$work/rir.scp" \
@@ -67,14 +75,14 @@ done
 echo
 echo "| translation (width 64, $n RIRs, --batch-size=16 unless said) | RIRs/s (wall, excl. model load) | CPU s total | peak RSS MB |"
 echo "|---|---|---|---|"
-for spec in "original float32 16" "original float32 1" "original bfloat16 16" "light float32 16" "light bfloat16 16"; do
+for spec in "paper float32 16" "paper float32 1" "paper bfloat16 16" "defaults float32 16" "defaults bfloat16 16"; do
   set -- $spec
-  dec=$1; prec=$2; b=$3
-  out=$work/out_${dec}_${prec}_$b
-  /usr/bin/time -f "%e %U %S %M" -o "$work/time_t" "$bin/gas-to-real" --model="$work/m64_t${threads}_$dec" \
+  cfg=$1; prec=$2; b=$3
+  out=$work/out_${cfg}_${prec}_$b
+  /usr/bin/time -f "%e %U %S %M" -o "$work/time_t" "$bin/gas-to-real" --model="$work/m64_t${threads}_$cfg" \
     --batch-size=$b --precision=$prec --num-threads=$threads "$work/rir.scp" "$out" 2> "$work/log_t"
   read -r wall user sys rss < "$work/time_t"
   rate=$(grep -o '[0-9.e+]* RIRs/s' "$work/log_t" | cut -d' ' -f1)
-  echo "| gas-to-real, $dec-decoder model, --precision=$prec --batch-size=$b | $rate | $(awk -v u="$user" -v s="$sys" 'BEGIN{printf "%.1f", u+s}') | $((rss / 1024)) |"
+  echo "| gas-to-real, model trained with the $cfg configuration, --precision=$prec --batch-size=$b | $rate | $(awk -v u="$user" -v s="$sys" 'BEGIN{printf "%.1f", u+s}') | $((rss / 1024)) |"
 done
 echo "# load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
