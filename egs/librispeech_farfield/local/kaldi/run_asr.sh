@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Stage 8 of run.sh for one training set: the far-field LibriSpeech ASR benchmark of the paper
 # (RoyJames/kaldi egs/librispeech/s5/run_rvb.sh + local/chain/tuning/run_tdnn_1d_custom.sh; see
-# ../shared/docs/spec-digest.md sec. 5.3) run through Kaldi's own scripts in a Kaldi work
+# docs/reference/spec-digest.md sec. 5.3) run through Kaldi's own scripts in a Kaldi work
 # directory <work-dir> (steps/ and utils/ of egs/wsj/s5, local/ of egs/librispeech/s5):
 #   1 LMs (openslr 11) and lexicon, dict, lang_nosp, G.fst (tgsmall, tgmed), ConstArpa (tglarge, fglarge)
 #   2 the far-field train, dev and test dirs copied in, 13-dim MFCC + CMVN
