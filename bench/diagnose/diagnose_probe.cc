@@ -123,14 +123,15 @@ int main(int argc, char** argv) {
       options.fixed["noise_late_decay_db"] = 3.0 / std::max(k, 1e-3);
     } else if (e == "room_modes") {
       // Modes decaying 2x the room's low-band T60 at the level whose mode-prominence statistic is
-      // k x 0.5 dB (the threshold), interpolated in this table of the statistic against the level
-      // (dB re the generator's nominal modal level), measured on seed 1, 48 RIRs:
-      //   diagnose_probe --count=48 --seed=1 --effects=room_modes --fix=mode_gain_db=G,mode_decay_factor=2
-      const double stat[] = {0.222, 0.338, 0.544, 0.910, 1.337, 1.654, 1.874, 2.085};
-      const double gain[] = {-15, -12, -9, -6, -3, 0, 3, 6};
-      const double want = 0.5 * k;
-      double g = want <= stat[0] ? gain[0] : gain[7];
-      for (int i = 0; i + 1 < 8; ++i) {
+      // k x 0.25 dB (the threshold), interpolated in this table of the statistic against the level
+      // (dB re the generator's nominal modal level), the mean over seeds 1-4, 48 RIRs each:
+      //   diagnose_probe --count=48 --seed=S --effects=room_modes --fix=mode_gain_db=G,mode_decay_factor=2
+      const double stat[] = {0.067, 0.090, 0.136, 0.230, 0.372, 0.490, 0.620, 0.741, 0.865, 0.950, 1.022};
+      const double gain[] = {-30, -24, -20, -16, -12, -9, -6, -3, 0, 3, 6};
+      constexpr int kPoints = 11;
+      const double want = 0.25 * k;
+      double g = want <= stat[0] ? gain[0] : gain[kPoints - 1];
+      for (int i = 0; i + 1 < kPoints; ++i) {
         if (want >= stat[i] && want <= stat[i + 1]) g = gain[i] + (gain[i + 1] - gain[i]) * (want - stat[i]) / (stat[i + 1] - stat[i]);
       }
       options.fixed["mode_gain_db"] = g;

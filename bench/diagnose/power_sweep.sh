@@ -5,7 +5,7 @@
 # (bench/diagnose/diagnose_probe.cc --strength: latency 0.6K ms; 1 kHz band decay rate 1.08^K;
 # 4 kHz air decay increase 1.05^K - 1; a 1 kHz transducer peak departing K dB from the band mean;
 # white noise leaving a late decay of 3/K dB (the flatness the decision requires is 3 dB); modes
-# at the level whose prominence statistic is 0.5K dB (a table measured on one seed); a source
+# at the level whose prominence statistic is 0.25K dB (a table measured on seeds 1-4); a source
 # directivity index of K dB in every band. diffuse_scattering is swept over its parameter, not
 # threshold-calibrated, as the generator's scattering cannot reach 2x its threshold: scattering
 # 0.1 + 0.85 K / 3). Power = fraction of sets where the effect is detected; false alarms = fraction
@@ -14,6 +14,7 @@
 # exit status 1 when one is not met.
 #   bench/diagnose/power_sweep.sh [build-dir] [seeds per point (5)] [null sets (20)] [raw-dir]
 # (raw-dir keeps the per-set lines; a probe that fails is reported on stderr and not counted.)
+# JOBS=N runs N probes at a time (default: the number of cores).
 # EFFECTS="a b" and STRENGTHS="2" restrict the sweep (e.g. to re-check one effect's calibration);
 # effects left out print no row.
 set -euo pipefail
@@ -23,7 +24,8 @@ seeds=${2:-5}
 nulls=${3:-20}
 strengths=${STRENGTHS:-0.5 1 2 3}
 effects=${EFFECTS:-time_offset band_absorption air_absorption transducer_response noise_floor room_modes source_directivity diffuse_scattering}
-ninja -C "$build" diagnose_probe >/dev/null
+# A build tree is brought up to date; a bare copy of the binary (another machine) is used as is.
+[ ! -f "$build/build.ninja" ] || ninja -C "$build" diagnose_probe >/dev/null
 probe="$build/bin/diagnose_probe"
 if [ -n "${4:-}" ]; then
   tmp=$4
@@ -34,18 +36,38 @@ else
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
 fi
-echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; $seeds seeds per point, $nulls null sets"
+echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; $seeds seeds per point, $nulls null sets, ${JOBS:-$(nproc)} probes at a time"
+# One probe per set, JOBS at a time (default: the number of cores); each writes its own part file,
+# concatenated in a fixed order, so the table does not depend on JOBS.
+mkdir -p "$tmp/parts"
+rm -f "$tmp/parts"/*
+jobs_list=$tmp/jobs
+: > "$jobs_list"
+i=0
 for s in $(seq 1 "$nulls"); do
-  "$probe" --count=48 --seed=$((500 + s)) 2>/dev/null | grep '^seed' >> "$tmp/null" || echo "null set $s failed" >&2
+  i=$((i + 1)); printf '%05d null - %d\n' $i $((500 + s)) >> "$jobs_list"
 done
 for e in $effects; do
   for k in $strengths; do
     for s in $(seq 1 "$seeds"); do
-      "$probe" --count=48 --seed=$((600 + s)) --effects=$e --strength=$k 2>/dev/null | grep '^seed' | sed "s/^/$e $k /" >> "$tmp/hidden" ||
-        echo "$e $k seed $s failed" >&2
+      i=$((i + 1)); printf '%05d %s %s %d\n' $i "$e" "$k" $((600 + s)) >> "$jobs_list"
     done
   done
 done
+run_one() {  # <index> <effect|null> <strength> <seed>
+  local out=$tmp/parts/$1
+  if [ "$2" = null ]; then
+    "$probe" --count=48 --seed="$4" 2>/dev/null | grep '^seed' > "$out.null" || echo "null set seed $4 failed" >&2
+  else
+    "$probe" --count=48 --seed="$4" --effects="$2" --strength="$3" 2>/dev/null | grep '^seed' | sed "s/^/$2 $3 /" > "$out.hidden" ||
+      echo "$2 $3 seed $4 failed" >&2
+  fi
+}
+export -f run_one
+export tmp probe
+xargs -P "${JOBS:-$(nproc)}" -L 1 bash -c 'run_one "$@"' _ < "$jobs_list"
+cat /dev/null "$tmp"/parts/*.null >> "$tmp/null" 2>/dev/null || true
+cat /dev/null "$tmp"/parts/*.hidden >> "$tmp/hidden" 2>/dev/null || true
 echo
 header="| effect | false alarms (null sets) | spurious in other effects' sets |"
 rule="|---|---|---|"

@@ -3,6 +3,9 @@
 // translation rate can be compared with what the machine's arithmetic allows.
 //   gan_forward_bench [--width=64] [--decoder=original|light] [--batch=16] [--threads=2]
 //                     [--precision=float32|bfloat16] [--reps=5]
+//                     [--generator=original|residual] [--correction-max-hz=0|500]
+// (--generator=residual --correction-max-hz=500 --decoder=light: ts-rirgan-train's defaults, the
+// model gas-to-real runs by default; the GFLOP column counts the convolution layers only.)
 #include <c10/core/InferenceMode.h>
 
 #include <algorithm>
@@ -60,7 +63,9 @@ int main(int argc, char** argv) {
   tsrir::set_openblas_threads(1);
   tsrir::gan::set_torch_threads(threads);
   torch::manual_seed(1);
-  tsrir::gan::Generator g(width, 25, tsrir::gan::InitKind::kHe, decoder);
+  const std::string kind = arg(argc, argv, "generator", "original");
+  const double correction_max_hz = std::atof(arg(argc, argv, "correction-max-hz", "0").c_str());
+  tsrir::gan::Generator g(width, 25, tsrir::gan::InitKind::kHe, decoder, kind, correction_max_hz);
   g->eval();
   const auto dtype = precision == "bfloat16" ? torch::kBFloat16 : torch::kFloat32;
   g->to(dtype);
@@ -76,7 +81,10 @@ int main(int argc, char** argv) {
   std::sort(seconds.begin(), seconds.end());
   const double s = seconds[seconds.size() / 2];
   const double gflop = generator_gflop(width, decoder, 25);
-  std::printf("| %d | %s | %d | %d | %s | %.1f | %.2f | %.1f | %.2f | %.0f |\n", width, decoder.c_str(), batch,
+  const std::string model = kind == "residual" ? decoder + ", residual" +
+                                                      (correction_max_hz > 0 ? " <= " + std::to_string(int(correction_max_hz)) + " Hz" : "")
+                                                : decoder;
+  std::printf("| %d | %s | %d | %d | %s | %.1f | %.2f | %.1f | %.2f | %.0f |\n", width, model.c_str(), batch,
               threads, precision.c_str(), tsrir::gan::count_parameters(*g) / 1e6, gflop, 1000.0 * s,
               batch / s, gflop * batch / s);
   return 0;

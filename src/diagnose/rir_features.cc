@@ -219,48 +219,57 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
     }
     f.lf_spectrum_db[k] = db(c ? s / c : 0.0);
   }
-  // Mode prominence: the spectrum's maximum within the modal half-bandwidth of each predicted
-  // mode, minus the same maximum around the midpoints of wide gaps between predicted modes, each
-  // taken relative to the local spectral level (mean dB over +-kTrendHz around it). Both are
-  // window maxima of the same spectrum, so for a response without modes at those frequencies the
-  // difference is zero; the local reference removes any smooth trend (a loudspeaker's
-  // low-frequency roll-off: wide gaps lie at the lowest frequencies, where a high-pass lowers the
-  // spectrum, so without it every roll-off read as modes).
+  // Mode prominence: the late spectrum's maximum within the modal half-bandwidth of each predicted
+  // mode, minus the mean of the same window maximum taken on a grid (one half-bandwidth apart)
+  // over the whole range of predicted modes, each taken relative to the local spectral level
+  // (mean dB over +-kTrendHz around it). Both are window maxima of the same spectrum, so for a
+  // response whose peaks do not sit at the predicted modes the difference is zero; the local
+  // reference removes any smooth trend (a loudspeaker's low-frequency roll-off would otherwise
+  // read as modes). The grid reference replaced maxima at the midpoints of wide gaps between
+  // modes: a handful of midpoints per RIR made the reference, and so the statistic, about three
+  // times noisier (per-RIR s.d. 1.1 dB against 0.4 dB; docs/results/diagnose_power.md).
   constexpr double kTrendHz = 10.0;
   const double tol_hz = std::max(0.75, 1.1 / std::max(t60_low_s, 0.1));
+  const size_t late_begin_mode =
+      std::min(n, static_cast<size_t>(std::max(0L, on)) + static_cast<size_t>(options.mode_spectrum_begin_ms * 1e-3 * fs));
+  const std::vector<float> late_part(h.begin() + late_begin_mode, h.end());
+  const std::vector<double> pl = late_part.size() >= 16 ? power_spectrum(late_part, nfft) : std::vector<double>();
   auto window_max = [&](double centre) {
     double best = -300.0;
-    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - tol_hz) / df)); k * df <= centre + tol_hz && k < p.size(); ++k) {
-      best = std::max(best, db(p[k]));
+    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - tol_hz) / df)); k * df <= centre + tol_hz && k < pl.size(); ++k) {
+      best = std::max(best, db(pl[k]));
     }
     return best;
+  };
+  auto local_level = [&](double centre) {
+    double sum = 0.0;
+    int count = 0;
+    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - kTrendHz) / df)); k * df <= centre + kTrendHz && k < pl.size(); ++k) {
+      sum += db(pl[k]);
+      ++count;
+    }
+    return count ? sum / count : 0.0;
   };
   std::vector<double> in_range;
   for (double fm : mode_freqs_hz) {
     if (fm >= options.lf_min_hz && fm <= schroeder_hz) in_range.push_back(fm);
   }
   std::sort(in_range.begin(), in_range.end());
-  auto local_level = [&](double centre) {
-    double sum = 0.0;
-    int count = 0;
-    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - kTrendHz) / df)); k * df <= centre + kTrendHz && k < p.size(); ++k) {
-      sum += db(p[k]);
-      ++count;
+  double peak_sum = 0.0, grid_sum = 0.0;
+  int peak_n = 0, grid_n = 0;
+  if (!pl.empty()) {
+    for (double fm : in_range) {
+      peak_sum += window_max(fm) - local_level(fm);
+      ++peak_n;
     }
-    return count ? sum / count : 0.0;
-  };
-  double peak_sum = 0.0, gap_sum = 0.0;
-  int peak_n = 0, gap_n = 0;
-  for (size_t m = 0; m < in_range.size(); ++m) {
-    peak_sum += window_max(in_range[m]) - local_level(in_range[m]);
-    ++peak_n;
-    if (m + 1 < in_range.size() && in_range[m + 1] - in_range[m] > 2.5 * tol_hz) {
-      const double mid = 0.5 * (in_range[m] + in_range[m + 1]);
-      gap_sum += window_max(mid) - local_level(mid);
-      ++gap_n;
+    if (!in_range.empty()) {
+      for (double c = in_range.front(); c <= in_range.back(); c += tol_hz) {
+        grid_sum += window_max(c) - local_level(c);
+        ++grid_n;
+      }
     }
   }
-  f.mode_prominence_db = (peak_n >= 3 && gap_n >= 3) ? peak_sum / peak_n - gap_sum / gap_n : NAN;
+  f.mode_prominence_db = (peak_n >= 3 && grid_n >= 3) ? peak_sum / peak_n - grid_sum / grid_n : NAN;
   return f;
 }
 
