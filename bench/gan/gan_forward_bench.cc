@@ -3,7 +3,7 @@
 // translation rate can be compared with what the machine's arithmetic allows.
 //   gan_forward_bench [--width=64] [--decoder=original|light] [--batch=16] [--threads=2]
 //                     [--precision=float32|bfloat16] [--reps=5]
-//                     [--generator=original|residual] [--correction-max-hz=0|500]
+//                     [--generator=original|residual] [--correction-max-hz=0|500] [--lowpass-compare=1]
 // (--generator=residual --correction-max-hz=500 --decoder=light: ts-rirgan-train's defaults, the
 // model gas-to-real runs by default; the GFLOP column counts the convolution layers only.)
 #include <c10/core/InferenceMode.h>
@@ -77,6 +77,27 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     g->forward(x);
     seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  if (kind == "residual" && correction_max_hz > 0 && arg(argc, argv, "lowpass-compare", "0") == "1") {
+    // The correction's low-pass alone on one batch: the direct conv1d it used to be against the
+    // FFT form the generator now uses (median of reps), printed as a comment line.
+    const torch::Tensor taps = torch::tensor(tsrir::gan::correction_lowpass_taps(correction_max_hz)).view({1, 1, -1}).to(dtype);
+    const int64_t half = taps.size(2) / 2;
+    auto median_ms = [&](auto&& f) {
+      std::vector<double> t;
+      f();
+      for (int r = 0; r < reps; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        f();
+        t.push_back(1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+      std::sort(t.begin(), t.end());
+      return t[t.size() / 2];
+    };
+    const double direct = median_ms([&] { torch::conv1d(torch::constant_pad_nd(x, {half, half}, 0.0), taps); });
+    const double fft = median_ms([&] { tsrir::gan::lowpass_same(x, taps); });
+    std::printf("# correction low-pass (%lld taps), batch %d: direct conv1d %.2f ms, FFT %.2f ms\n",
+                static_cast<long long>(taps.size(2)), batch, direct, fft);
   }
   std::sort(seconds.begin(), seconds.end());
   const double s = seconds[seconds.size() / 2];

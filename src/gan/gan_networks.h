@@ -121,6 +121,9 @@ class TfRmsProp {
 Generator make_generator(const GanSettings& settings, InitKind init);
 // The low-pass taps of a band-limited correction (odd length, unit DC gain), at 16 kHz.
 std::vector<float> correction_lowpass_taps(double cutoff_hz);
+// x [batch, 1, n] filtered by taps [1, 1, k] (k odd), centred, 'same' length: the sum
+// conv1d(constant_pad_nd(x, {k/2, k/2}), taps) computes, by FFT; differentiable; x's dtype.
+torch::Tensor lowpass_same(const torch::Tensor& x, const torch::Tensor& taps);
 
 // The four networks and their optimisers.
 struct CycleGan {

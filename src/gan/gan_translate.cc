@@ -81,7 +81,11 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
     parallel_for(n, o.num_threads, [&](size_t i) {
       inputs[i] = prepare_gan_input(load_rir(refs[begin + i], read_options));
     });
-    torch::Tensor x = torch::empty({int64_t(n), 1, int64_t(kGanSliceLength)});
+    // A short last batch is padded with silent rows to the batch size: a new input shape makes
+    // oneDNN create (JIT-compile) every layer's kernels again, which costs more than computing
+    // the padding rows. Rows do not interact (no batch statistics in the generator).
+    const size_t rows = refs.size() > size_t(o.batch_size) ? size_t(o.batch_size) : n;
+    torch::Tensor x = torch::zeros({int64_t(rows), 1, int64_t(kGanSliceLength)});
     for (size_t i = 0; i < n; ++i) {
       std::memcpy(x[i].data_ptr<float>(), inputs[i].samples.data(), kGanSliceLength * sizeof(float));
       cropped += inputs[i].cropped;

@@ -235,6 +235,29 @@ TEST(GanNetworks, BandLimitedCorrectionLeavesTheBandAboveMaxHz) {
   EXPECT_NEAR(dc, 1.0, 1e-4);
 }
 
+// The FFT form of the correction's low-pass computes the direct sum conv1d computes (float64
+// reference, taps made asymmetric so that a flipped kernel would show), and its gradient too.
+TEST(GanNetworks, FftLowpassEqualsTheDirectConvolution) {
+  torch::manual_seed(12);
+  const std::vector<float> design = correction_lowpass_taps(500.0);
+  torch::Tensor taps = torch::tensor(design).view({1, 1, -1});
+  taps = taps * torch::linspace(0.5, 1.5, taps.size(2)).view({1, 1, -1});  // asymmetric
+  const int64_t half = taps.size(2) / 2;
+  torch::Tensor x = torch::randn({3, 1, 16384}).requires_grad_(true);
+  const torch::Tensor fast = lowpass_same(x, taps);
+  const torch::Tensor x64 = x.detach().to(torch::kDouble).requires_grad_(true);
+  const torch::Tensor direct = torch::conv1d(torch::constant_pad_nd(x64, {half, half}, 0.0), taps.to(torch::kDouble));
+  ASSERT_EQ(fast.sizes(), x.sizes());
+  const double error = ((fast.to(torch::kDouble) - direct).norm() / direct.norm()).item<double>();
+  EXPECT_LT(error, 1e-5) << "relative RMS error " << error;  // float32 FFTs of 32768 points
+  const torch::Tensor weight = torch::randn({3, 1, 16384});
+  const torch::Tensor g_fast = torch::autograd::grad({(fast * weight).sum()}, {x})[0];
+  const torch::Tensor g_direct = torch::autograd::grad({(direct * weight.to(torch::kDouble)).sum()}, {x64})[0];
+  EXPECT_LT(((g_fast.to(torch::kDouble) - g_direct).norm() / g_direct.norm()).item<double>(), 1e-5);
+  // bfloat16 in, bfloat16 out (computed in float32).
+  EXPECT_EQ(lowpass_same(x.detach().to(torch::kBFloat16), taps).scalar_type(), torch::kBFloat16);
+}
+
 // He-uniform: limit sqrt(6/fan) with fan = inputs summed per output (in*k for a conv, in*k/stride
 // for the transposed conv), variance 2/fan; biases zero.
 TEST(GanNetworks, HeUniformInitialisation) {
