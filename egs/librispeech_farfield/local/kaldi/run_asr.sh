@@ -17,6 +17,22 @@
 # Deviations from the paper's recipe, both forced by training on one far-field set: tri4b is
 # trained on the first ~100 h (30k utterances; the paper: train-clean-100) and the cleanup uses
 # Kaldi's steps/cleanup/clean_and_segment_data.sh directly.
+#
+# A corpus without LibriSpeech's LMs and lexicon, and no internet (docs/results/kaldi_gmm.md):
+#   --lm-text <text>   stage 1 builds, instead of the openslr downloads, a word n-gram LM
+#                      (--lm-order, Kneser-Ney: Kaldi's utils/lang/make_kn_lm.py) from <text> (one
+#                      sentence a line, e.g. the training transcripts) and an espeak-ng lexicon
+#                      (local/kaldi/make_espeak_dict.sh, voices --dict-voices) of every word of the
+#                      LM text, of the train/dev/test transcripts and of --dict-text <text> (words
+#                      for the lexicon only, e.g. a test set decoded elsewhere); all are lowercased
+#                      (espeak-ng is case-blind). OOV word: <unk>. Decoding graph: lang_nosp_test_small.
+#   --stop-after gmm   stage 3 stops after mono, tri1 and tri2b; each is decoded on the test set(s)
+#                      (--test, --dev if given, --extra-tests) with steps/decode.sh and scored with
+#                      steps/score_kaldi.sh and steps/scoring/score_kaldi_cer.sh; the best WER/CER per
+#                      model and set (Kaldi's convention: best LM weight and insertion penalty) are
+#                      written to <work-dir>/exp/gmm_results.txt; --dev is then optional.
+#   --tri1-size, --tri2b-size  "<leaves> <Gaussians>" (or "<leaves>,<Gaussians>") of tri1 and tri2b
+#                      (small corpora need fewer).
 set -euo pipefail
 
 stage=1
@@ -31,21 +47,47 @@ cleanup=true
 use_gpu=yes         # steps/nnet3/chain/train.py --use-gpu (yes | wait | no)
 num_jobs_initial=2  # the paper's run_tdnn_1d_custom.sh (upstream: 3)
 num_jobs_final=2    # (upstream: 16)
+lm_text=""          # text (one sentence a line) for a small LM + espeak-ng lexicon: no downloads
+lm_order=3          # n-gram order of the --lm-text LM
+dict_voices="en-us en-gb"  # espeak-ng voices of the --lm-text lexicon
+stop_after=""       # gmm: stop after mono/tri1/tri2b training and their decoding
+tri1_size="2000 10000"     # tri1 leaves and Gaussians
+tri2b_size="2500 15000"    # tri2b leaves and Gaussians
+extra_tests=""      # more test data dirs (space-separated) decoded with --stop-after gmm
+dict_text=""        # more sentences whose words go into the --lm-text lexicon (not into the LM)
 help_message="Usage: $0 [--stage N] [--nj N] --train <dir> --dev <dir> --test <dir> <kaldi-work-dir>
-e.g.: $0 --train data/train_clean_460_rvb_gas --dev data/dev_clean_rvb_real --test data/test_clean_rvb_real exp/kaldi/gas"
+       $0 --lm-text <text> --stop-after gmm [--nj N] --train <dir> --test <dir> [--extra-tests <dirs>] <kaldi-work-dir>
+e.g.: $0 --train data/train_clean_460_rvb_gas --dev data/dev_clean_rvb_real --test data/test_clean_rvb_real exp/kaldi/gas
+      $0 --lm-text lm_text.txt --stop-after gmm --nj 2 --tri1-size \"200 1500\" --tri2b-size \"250 2000\" \\
+        --train data/asr/train_gas --test data/asr/test_real --extra-tests data/asr/test_realspeech exp/kaldi_gmm/gas"
 
 [ -n "${KALDI_ROOT:-}" ] || { echo "$0: KALDI_ROOT must point to a compiled Kaldi" >&2; exit 1; }
 . "$KALDI_ROOT/egs/wsj/s5/utils/parse_options.sh"
 [ $# -eq 1 ] || { echo "$help_message" >&2; exit 1; }
-for d in "$train" "$dev" "$test"; do
-  [ -n "$d" ] && [ -f "$d/wav.scp" ] || { echo "$0: --train, --dev and --test must be data dirs (got '$d')" >&2; exit 1; }
+case $stop_after in ""|gmm) ;; *) echo "$0: --stop-after must be gmm or empty (got '$stop_after')" >&2; exit 1 ;; esac
+for d in "$train" "$test" $extra_tests; do
+  [ -n "$d" ] && [ -f "$d/wav.scp" ] || { echo "$0: --train, --test and --extra-tests must be data dirs (got '$d')" >&2; exit 1; }
 done
+if [ -n "$dev" ] || [ "$stop_after" != gmm ]; then
+  [ -n "$dev" ] && [ -f "$dev/wav.scp" ] || { echo "$0: --dev must be a data dir (got '$dev')" >&2; exit 1; }
+fi
+tri1_size=${tri1_size//,/ }; tri2b_size=${tri2b_size//,/ }  # "300,2000" also (run.sh --kaldi-opts)
+if [ -n "$lm_text" ]; then
+  [ -s "$lm_text" ] || { echo "$0: --lm-text: empty or missing file '$lm_text'" >&2; exit 1; }
+  lm_text=$(readlink -f "$lm_text")
+fi
+[ -z "$dict_text" ] || dict_text=$(readlink -f "$dict_text")
 recipe=$(cd "$(dirname "$(readlink -f "$0")")/../.." && pwd)
 w=$1
 mkdir -p "$w"
 w=$(readlink -f "$w")
 lm_dir=$(readlink -m "${lm_dir:-$w/../lm}")
-train=$(readlink -f "$train"); dev=$(readlink -f "$dev"); test=$(readlink -f "$test")
+train=$(readlink -f "$train"); test=$(readlink -f "$test")
+[ -z "$dev" ] || dev=$(readlink -f "$dev")
+# the evaluation sets: Kaldi data dir name -> source dir
+eval_names=(test_farfield); eval_dirs=("$test")
+[ -z "$dev" ] || { eval_names+=(dev_farfield); eval_dirs+=("$dev"); }
+for d in $extra_tests; do eval_names+=("$(basename "$d")"); eval_dirs+=("$(readlink -f "$d")"); done
 
 # ---- the Kaldi work directory ----
 cd "$w"
@@ -74,7 +116,25 @@ subset() {  # <src> <n> <dst> [--shortest]: at most n utterances
   if [ "$n" -le "$2" ]; then utils/copy_data_dir.sh "$1" "$3"; else utils/subset_data_dir.sh ${4:-} "$1" "$2" "$3"; fi
 }
 
-if [ "$stage" -le 1 ]; then
+oov="<UNK>"; gmm_lang_test=data/lang_nosp_test_tgsmall; gmm_lm=tgsmall
+[ -z "$lm_text" ] || { oov="<unk>"; gmm_lang_test=data/lang_nosp_test_small; gmm_lm=small; }
+# data dir transcripts without utterance ids (lowercased)
+transcripts() { for d in "$@"; do cut -d' ' -f2- "$d/text"; done | tr '[:upper:]' '[:lower:]'; }
+
+if [ "$stage" -le 1 ] && [ -n "$lm_text" ]; then
+  mkdir -p data/local/lm_small
+  tr '[:upper:]' '[:lower:]' <"$lm_text" | awk 'NF' >data/local/lm_small/lm_text.txt
+  { cat data/local/lm_small/lm_text.txt; transcripts "$train" "${eval_dirs[@]}"
+    [ -z "$dict_text" ] || tr '[:upper:]' '[:lower:]' <"$dict_text"; } >data/local/lm_small/sentences.txt
+  tr -s ' ' '\n' <data/local/lm_small/sentences.txt | grep -v '^$' | sort -u >data/local/lm_small/words.txt
+  "$recipe/local/kaldi/make_espeak_dict.sh" --voices "$dict_voices" --oov "$oov" \
+    --sentences data/local/lm_small/sentences.txt data/local/lm_small/words.txt data/local/dict_nosp
+  utils/prepare_lang.sh data/local/dict_nosp "$oov" data/local/lang_tmp_nosp data/lang_nosp
+  python3 utils/lang/make_kn_lm.py -ngram-order "$lm_order" -text data/local/lm_small/lm_text.txt \
+    -lm data/local/lm_small/lm.arpa
+  gzip -f data/local/lm_small/lm.arpa
+  utils/format_lm.sh data/lang_nosp data/local/lm_small/lm.arpa.gz data/local/dict_nosp/lexicon.txt $gmm_lang_test
+elif [ "$stage" -le 1 ]; then
   "$recipe/local/kaldi/download_lm.sh" "$lm_url" "$lm_dir"
   ln -sfn "$lm_dir" data/local/lm
   local/prepare_dict.sh --stage 3 --nj "$nj" --cmd "$train_cmd" data/local/lm data/local/lm data/local/dict_nosp
@@ -86,9 +146,14 @@ fi
 
 if [ "$stage" -le 2 ]; then
   utils/copy_data_dir.sh "$train" data/train
-  utils/copy_data_dir.sh "$dev" data/dev_farfield
-  utils/copy_data_dir.sh "$test" data/test_farfield
-  for x in train dev_farfield test_farfield; do
+  for i in "${!eval_names[@]}"; do utils/copy_data_dir.sh "${eval_dirs[$i]}" "data/${eval_names[$i]}"; done
+  if [ -n "$lm_text" ]; then
+    for x in train "${eval_names[@]}"; do
+      awk '{ printf "%s", $1; for (i = 2; i <= NF; i++) printf " %s", tolower($i); print "" }' data/$x/text >data/$x/text.tmp
+      mv data/$x/text.tmp data/$x/text
+    done
+  fi
+  for x in train "${eval_names[@]}"; do
     steps/make_mfcc.sh --cmd "$train_cmd" --nj "$(jobs_for data/$x "$nj")" data/$x exp/make_mfcc/$x mfcc
     steps/compute_cmvn_stats.sh data/$x exp/make_mfcc/$x mfcc
     utils/fix_data_dir.sh data/$x
@@ -104,12 +169,39 @@ if [ "$stage" -le 3 ]; then
     data/train_2kshort data/lang_nosp exp/mono
   steps/align_si.sh --boost-silence 1.25 --nj "$(jobs_for data/train_5k "$nj")" --cmd "$train_cmd" \
     data/train_5k data/lang_nosp exp/mono exp/mono_ali_5k
-  steps/train_deltas.sh --boost-silence 1.25 --cmd "$train_cmd" 2000 10000 data/train_5k data/lang_nosp \
+  steps/train_deltas.sh --boost-silence 1.25 --cmd "$train_cmd" $tri1_size data/train_5k data/lang_nosp \
     exp/mono_ali_5k exp/tri1
   steps/align_si.sh --nj "$(jobs_for data/train_10k "$nj")" --cmd "$train_cmd" data/train_10k data/lang_nosp \
     exp/tri1 exp/tri1_ali_10k
-  steps/train_lda_mllt.sh --cmd "$train_cmd" --splice-opts "--left-context=3 --right-context=3" 2500 15000 \
+  steps/train_lda_mllt.sh --cmd "$train_cmd" --splice-opts "--left-context=3 --right-context=3" $tri2b_size \
     data/train_10k data/lang_nosp exp/tri1_ali_10k exp/tri2b
+fi
+
+if [ "$stop_after" = gmm ]; then
+  # Decode each GMM with the small (or tgsmall) LM; score WER and CER. Later stages never run here.
+  if [ "$stage" -le 3 ]; then
+    for m in mono tri1 tri2b; do
+      utils/mkgraph.sh $gmm_lang_test exp/$m exp/$m/graph_$gmm_lm
+      for x in "${eval_names[@]}"; do
+        dir=exp/$m/decode_${gmm_lm}_$x
+        steps/decode.sh --nj "$(jobs_for data/$x "$decode_nj")" --cmd "$decode_cmd" --skip-scoring true \
+          exp/$m/graph_$gmm_lm data/$x $dir
+        steps/score_kaldi.sh --cmd "$decode_cmd" data/$x exp/$m/graph_$gmm_lm $dir
+        steps/scoring/score_kaldi_cer.sh --stage 2 --cmd "$decode_cmd" data/$x exp/$m/graph_$gmm_lm $dir
+      done
+    done
+  fi
+  for m in mono tri1 tri2b; do
+    for x in "${eval_names[@]}"; do
+      dir=exp/$m/decode_${gmm_lm}_$x
+      echo "$m $x $(cat $dir/scoring_kaldi/best_wer) | $(cat $dir/scoring_kaldi/best_cer)"
+    done
+  done | tee exp/gmm_results.txt
+  echo "$0: done (--stop-after gmm): $w/exp/gmm_results.txt" >&2
+  exit 0
+fi
+
+if [ "$stage" -le 3 ]; then
   steps/align_si.sh --nj "$(jobs_for data/train_10k "$nj")" --cmd "$train_cmd" --use-graphs true \
     data/train_10k data/lang_nosp exp/tri2b exp/tri2b_ali_10k
   steps/train_sat.sh --cmd "$train_cmd" 2500 15000 data/train_10k data/lang_nosp exp/tri2b_ali_10k exp/tri3b
