@@ -61,18 +61,24 @@ bool write_loss_curves_svg(const std::string& loss_log_csv, const std::string& s
     for (const auto& name : panels[p].names) {
       const std::vector<double>* v = column(name);
       std::vector<double> curve;
-      if (v) {
+      // A column of "nan" is a loss not computed in this run (the identity L1 at weight 0):
+      // no curve. A bucket's mean is over its finite values.
+      if (v && std::any_of(v->begin(), v->end(), [](double x) { return std::isfinite(x); })) {
         for (size_t b = 0; b < buckets; ++b) {
           const size_t from = b * n / buckets, to = std::max(from + 1, (b + 1) * n / buckets);
           double sum = 0;
-          for (size_t i = from; i < to; ++i) sum += (*v)[i];
-          const double mean = std::max(sum / double(to - from), 1e-12);
+          size_t count = 0;
+          for (size_t i = from; i < to; ++i) {
+            if (std::isfinite((*v)[i])) sum += (*v)[i], ++count;
+          }
+          const double mean = std::max(count > 0 ? sum / double(count) : 0.0, 1e-12);
           curve.push_back(std::log10(mean));
           lo = std::min(lo, curve.back()), hi = std::max(hi, curve.back());
         }
       }
       curves.push_back(curve);
     }
+    if (lo > hi) lo = 0, hi = 1;  // no curve in this panel
     if (!(hi > lo)) hi = lo + 1;
     svg << "<rect x='" << x0 << "' y='" << y0 << "' width='" << pw << "' height='" << ph
         << "' fill='none' stroke='#888'/>\n<text x='" << x0 << "' y='" << y0 - 6 << "'>" << panels[p].title
@@ -81,7 +87,11 @@ bool write_loss_curves_svg(const std::string& loss_log_csv, const std::string& s
         << "</text><text x='" << x0 - 4 << "' y='" << y0 + ph << "' text-anchor='end'>" << std::pow(10.0, lo)
         << "</text>\n";
     for (size_t c = 0; c < curves.size(); ++c) {
-      if (curves[c].empty()) continue;
+      if (curves[c].empty()) {
+        svg << "<text x='" << x0 + pw - 4 << "' y='" << y0 + 14 + 13 * c << "' text-anchor='end' fill='"
+            << colours[c] << "'>" << panels[p].names[c] << ": not computed</text>\n";
+        continue;
+      }
       svg << "<polyline fill='none' stroke='" << colours[c] << "' points='";
       for (size_t b = 0; b < curves[c].size(); ++b) {
         const double x = x0 + pw * (curves[c].size() > 1 ? double(b) / double(curves[c].size() - 1) : 0.0);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -290,12 +291,21 @@ class Trainer {
     auto [r, s] = batches(draw);
     const int64_t b = r.size(0);
     torch::Tensor fake_r, fake_s;
+    const bool identity = m_.settings.identity_weight > 0;
     {
       torch::Tensor adv_r, adv_s, cyc_r, cyc_s, idt_r, idt_s, loss;
       {
         AutocastScope autocast(bfloat16_);
-        const torch::Tensor out_sr = m_.g_real->forward(torch::cat({s, r}, 0));
-        const torch::Tensor out_rs = m_.g_synthetic->forward(torch::cat({r, s}, 0));
+        // With identity weight 0 (the default) the identity half of each pass has no gradient
+        // (0 x its L1), so it is not computed: 16 generator passes per step instead of 24. Each
+        // RIR's output and gradient do not depend on the rest of its batch (no batch statistics;
+        // GanNetworks.OutputAndGradientOfARirDoNotDependOnTheRestOfItsBatch), so this is the
+        // 24-pass step up to float32 rounding (the reduction order over the batch changes, and
+        // with it, GAN training being chaotic, the trajectory after a few steps: the fidelity
+        // seeds were re-run with it, bench/RESULTS.md). The identity columns of the loss log
+        // read "nan" (not measured).
+        const torch::Tensor out_sr = m_.g_real->forward(identity ? torch::cat({s, r}, 0) : s);
+        const torch::Tensor out_rs = m_.g_synthetic->forward(identity ? torch::cat({r, s}, 0) : r);
         fake_r = out_sr.narrow(0, 0, b);
         fake_s = out_rs.narrow(0, 0, b);
         const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
@@ -304,13 +314,19 @@ class Trainer {
         adv_s = (m_.d_synthetic->forward(seen(fake_s, "g/fake_s", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
         cyc_s = (s - rec_s).abs().mean();
         cyc_r = (r - rec_r).abs().mean();
-        idt_r = (r - out_sr.narrow(0, b, b).to(torch::kFloat)).abs().mean();
-        idt_s = (s - out_rs.narrow(0, b, b).to(torch::kFloat)).abs().mean();
         const double cw = m_.settings.cycle_weight, iw = m_.settings.identity_weight;
         const torch::Tensor cycles = cw * (cyc_s + cyc_r);
-        L->g_real = checked(adv_r + cycles + iw * idt_r, "G_real");
-        L->g_synthetic = checked(adv_s + cycles + iw * idt_s, "G_synthetic");
-        loss = adv_r + adv_s + cycles + iw * (idt_r + idt_s);
+        if (identity) {
+          idt_r = (r - out_sr.narrow(0, b, b).to(torch::kFloat)).abs().mean();
+          idt_s = (s - out_rs.narrow(0, b, b).to(torch::kFloat)).abs().mean();
+          L->g_real = checked(adv_r + cycles + iw * idt_r, "G_real");
+          L->g_synthetic = checked(adv_s + cycles + iw * idt_s, "G_synthetic");
+          loss = adv_r + adv_s + cycles + iw * (idt_r + idt_s);
+        } else {
+          L->g_real = checked(adv_r + cycles, "G_real");
+          L->g_synthetic = checked(adv_s + cycles, "G_synthetic");
+          loss = adv_r + adv_s + cycles;
+        }
       }
       std::vector<torch::Tensor> params = m_.optimizers[0].params();
       const size_t n_real = params.size();
@@ -321,7 +337,11 @@ class Trainer {
       m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
       L->adv_real = adv_r.item<double>(), L->adv_synthetic = adv_s.item<double>();
       L->cycle_real = cyc_r.item<double>(), L->cycle_synthetic = cyc_s.item<double>();
-      L->identity_real = idt_r.item<double>(), L->identity_synthetic = idt_s.item<double>();
+      if (identity) {
+        L->identity_real = idt_r.item<double>(), L->identity_synthetic = idt_s.item<double>();
+      } else {
+        L->identity_real = L->identity_synthetic = std::numeric_limits<double>::quiet_NaN();
+      }
     }
     L->d_real = discriminator_update(m_.d_real, m_.optimizers[2], r, fake_r.detach(), draw, "D_real");
     L->d_synthetic = discriminator_update(m_.d_synthetic, m_.optimizers[3], s, fake_s.detach(), draw, "D_synthetic");

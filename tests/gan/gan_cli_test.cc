@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 #include <thread>
 
 #include "gan_test_domains.h"
@@ -112,8 +113,15 @@ TEST_F(GanCli, CollapseCheckStopsTrainingWithAClearMessage) {
   EXPECT_TRUE(fs::exists(dir_ + "/collapsed/loss_curves.svg"));
   r = run(train("--steps=3 --generator=residual --collapse-check-every=1", "fine"), dir_);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(slurp(dir_ + "/fine/loss_curves.svg").find("<polyline"), std::string::npos);
+  const std::string svg = slurp(dir_ + "/fine/loss_curves.svg");
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);
   EXPECT_NE(slurp(dir_ + "/fine/settings.txt").find("generator residual"), std::string::npos);
+  // The default identity weight 0 skips the identity passes: its columns read nan, its panel says
+  // so instead of drawing a curve, and no coordinate is nan.
+  const std::string log = slurp(dir_ + "/fine/loss_log.csv");
+  EXPECT_NE(log.find(",nan,nan,"), std::string::npos) << log;
+  EXPECT_NE(svg.find("identity_l1_real: not computed"), std::string::npos);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
 }
 
 TEST_F(GanCli, BadTrainingInput) {
@@ -237,7 +245,21 @@ TEST_F(GanCli, NonFiniteLossStopsAndKeepsCheckpoint) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("not finite"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("last good checkpoint (step"), std::string::npos) << r.err;
-  EXPECT_EQ(slurp(dir_ + "/m/loss_log.csv").find("nan"), std::string::npos);
+  // No non-finite loss was logged (the identity columns read nan by design at the default
+  // identity weight 0: not computed).
+  std::istringstream log(slurp(dir_ + "/m/loss_log.csv"));
+  std::string row;
+  while (std::getline(log, row)) {
+    std::vector<std::string> cells;
+    std::istringstream fields(row);
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 12u) << row;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      if (c == 9 || c == 10) continue;  // identity_l1_real, identity_l1_synthetic
+      EXPECT_EQ(cells[c].find("nan"), std::string::npos) << row;
+      EXPECT_EQ(cells[c].find("inf"), std::string::npos) << row;
+    }
+  }
   r = run(kBin + "/gas-to-real --model=" + dir_ + "/m " + synthetic_ + " " + dir_ + "/out", dir_);
   EXPECT_EQ(r.status, 0) << r.err;
 }
