@@ -17,6 +17,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "diagnose/diagnose.h"
 #include "diagnose/rir_features.h"
@@ -28,6 +29,16 @@
 #include "util/strings.h"
 
 using namespace tsrir;
+
+// The hidden parameter whose statistic is `want`, interpolated linearly in a measured table of the
+// statistic (increasing) against the parameter; clamped to the table's ends.
+double parameter_for_statistic(const std::vector<double>& stat, const std::vector<double>& parameter, double want) {
+  if (want <= stat.front()) return parameter.front();
+  for (size_t i = 0; i + 1 < stat.size(); ++i) {
+    if (want <= stat[i + 1]) return parameter[i] + (parameter[i + 1] - parameter[i]) * (want - stat[i]) / (stat[i + 1] - stat[i]);
+  }
+  return parameter.back();
+}
 
 int main(int argc, char** argv) {
   std::set<std::string> effects;
@@ -126,24 +137,23 @@ int main(int argc, char** argv) {
       // k x 0.25 dB (the threshold), interpolated in this table of the statistic against the level
       // (dB re the generator's nominal modal level), the mean over seeds 1-4, 48 RIRs each:
       //   diagnose_probe --count=48 --seed=S --effects=room_modes --fix=mode_gain_db=G,mode_decay_factor=2
-      const double stat[] = {0.067, 0.090, 0.136, 0.230, 0.372, 0.490, 0.620, 0.741, 0.865, 0.950, 1.022};
-      const double gain[] = {-30, -24, -20, -16, -12, -9, -6, -3, 0, 3, 6};
-      constexpr int kPoints = 11;
-      const double want = 0.25 * k;
-      double g = want <= stat[0] ? gain[0] : gain[kPoints - 1];
-      for (int i = 0; i + 1 < kPoints; ++i) {
-        if (want >= stat[i] && want <= stat[i + 1]) g = gain[i] + (gain[i + 1] - gain[i]) * (want - stat[i]) / (stat[i + 1] - stat[i]);
-      }
-      options.fixed["mode_gain_db"] = g;
+      options.fixed["mode_gain_db"] =
+          parameter_for_statistic({0.067, 0.090, 0.136, 0.230, 0.372, 0.490, 0.620, 0.741, 0.865, 0.950, 1.022},
+                                  {-30, -24, -20, -16, -12, -9, -6, -3, 0, 3, 6}, 0.25 * k);
       options.fixed["mode_decay_factor"] = 2.0;
     } else if (e == "source_directivity") {
       // The same directivity index in every band, k dB (threshold 1 dB).
       options.fixed["directivity_flat_db"] = 1.0 * k;
     } else if (e == "diffuse_scattering") {
-      // Not threshold-calibrated: the generator's scattering moves the statistic at most ~0.044 (at
-      // scattering 0.95, seed 1: 0.9x the 0.05 threshold), so 2x is out of its reach. Swept over
-      // the parameter instead: scattering 0.1 + 0.85 k / 3 (k = 3: 0.95; stated 0.1).
-      options.fixed["scattering"] = 0.1 + 0.85 * std::min(k, 3.0) / 3.0;
+      // The scattering (stated 0.1) whose echo-density statistic is k x 0.05 (the threshold),
+      // interpolated in this table of the statistic against the generator's scattering, the mean
+      // over seeds 1-4, 48 RIRs each (2026-11-26, the 2-20 ms / 1-7 kHz statistic):
+      //   diagnose_probe --count=48 --seed=S --effects=diffuse_scattering --fix=scattering=X
+      // The statistic saturates at ~0.13 (2.6x) at scattering 0.95, the largest value swept: 3x
+      // is out of reach and runs at 0.95.
+      options.fixed["scattering"] =
+          parameter_for_statistic({-0.0020, 0.0118, 0.0264, 0.0466, 0.0763, 0.0941, 0.1056, 0.1209, 0.1299},
+                                  {0.17, 0.24, 0.31, 0.38, 0.5, 0.6, 0.7, 0.8, 0.95}, 0.05 * k);
     }
     for (const auto& [name, v] : options.fixed) std::cout << "fixed " << name << " = " << v << "\n";
   }

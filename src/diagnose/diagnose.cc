@@ -191,10 +191,22 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
     ext_s[k] = render_rir(ext_spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), eval_seed);
     base_f[k] = compute_features(base_s[k], obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
     ext_f[k] = compute_features(ext_s[k], obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
-    const auto eb = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, base_s[k], base_f[k].onset_s);
-    const auto ee = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, ext_s[k], ext_f[k].onset_s);
-    ed_err_base[k] = std::abs(eb.first - eb.second);
-    ed_err_ext[k] = std::abs(ee.first - ee.second);
+    // The early echo density of one render carries its own random diffuse field: the per-RIR
+    // error is taken against the mean of two renders (the eval seed and the next), which halves
+    // that part of its variance, so a fit that matches the set's density shows as a gain.
+    double ed_base = 0.0, ed_ext = 0.0;
+    for (uint64_t r = 0; r < 2; ++r) {
+      const Signal bs = r == 0 ? base_s[k] : render_rir(options.baseline_model, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), eval_seed + 1);
+      const Signal es = r == 0 ? ext_s[k] : render_rir(ext_spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), eval_seed + 1);
+      const double bo = r == 0 ? base_f[k].onset_s : compute_features(bs, {}, obs.schroeder_hz[i], obs.t60_low_s[i]).onset_s;
+      const double eo = r == 0 ? ext_f[k].onset_s : compute_features(es, {}, obs.schroeder_hz[i], obs.t60_low_s[i]).onset_s;
+      const auto eb = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, bs, bo);
+      const auto ee = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, es, eo);
+      ed_base += 0.5 * (eb.first - eb.second);
+      ed_ext += 0.5 * (ee.first - ee.second);
+    }
+    ed_err_base[k] = std::abs(ed_base);
+    ed_err_ext[k] = std::abs(ed_ext);
   });
   for (const MetricDef& def : metric_defs()) {
     std::vector<double> eb, ee, diff;

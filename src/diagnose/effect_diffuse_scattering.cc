@@ -1,6 +1,6 @@
 // diffuse_scattering: the surfaces scatter more (or less) than stated: the early reflections turn
 // into a dense, noise-like field sooner (or later).
-//   Statistic  early (5-45 ms) normalised echo density of the 1-4 kHz band, each RIR convolved
+//   Statistic  early (2-20 ms) normalised echo density of the 1-7 kHz band, each RIR convolved
 //              with the other's direct sound so that a chain's colouration or ringing cancels
 //              (rir_features.h: cross_equalised_echo_density); paired mean, both directions.
 //   Depends    source_directivity: a directional source weights the early reflections unequally
@@ -57,7 +57,7 @@ class DiffuseScatteringEffect : public Effect {
  public:
   std::string name() const override { return "diffuse_scattering"; }
   std::string description() const override {
-    return "the surfaces scatter more or less than stated: early (5-45 ms) echo density of the 1-4 kHz band, "
+    return "the surfaces scatter more or less than stated: early (2-20 ms) echo density of the 1-7 kHz band, "
            "cross-equalised; extension: scattering (value).";
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
@@ -71,7 +71,7 @@ class DiffuseScatteringEffect : public Effect {
     for (const auto& [x, y] : obs.echo_density_b_a) ed_e.push_back(x - y);
     const bool directional = ctx.detected("source_directivity");
     Finding f = decide_mean(name(), ed_d, ed_e, kThresholds.min_echo_density, directional ? +1 : 0,
-                            "early (5-45 ms) normalised echo density, 1-4 kHz, cross-equalised", "");
+                            "early (2-20 ms) normalised echo density, 1-7 kHz, cross-equalised", "");
     if (directional) {
       f.evidence += " Only a denser response counts: the detected source directivity makes the early response "
                     "sparser.";

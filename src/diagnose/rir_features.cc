@@ -188,10 +188,10 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
   for (size_t i = late_begin; i < n; ++i) late_e += double(h[i]) * h[i];
   f.tail_level_db = db(late_e / std::max(f.energy, 1e-300));
 
-  // Echo density of the 1-4 kHz part (low frequencies would measure the room's modes, not its
+  // Echo density of the mid/high band (low frequencies would measure the room's modes, not its
   // reflections).
-  const double ed_hi = std::min(4000.0, 0.45 * fs);
-  const std::vector<double> band = sos_filter(butterworth_bandpass(2, 1000.0, ed_hi, fs), h);
+  const double ed_hi = std::min(options.echo_density_high_hz, 0.45 * fs);
+  const std::vector<double> band = sos_filter(butterworth_bandpass(2, options.echo_density_low_hz, ed_hi, fs), h);
   const std::vector<float> bandf(band.begin(), band.end());
   const size_t ed_begin = static_cast<size_t>(std::max(0.0, onset + options.echo_density_begin_ms * 1e-3 * fs));
   const size_t ed_end = static_cast<size_t>(std::max(0.0, onset + options.echo_density_end_ms * 1e-3 * fs));
@@ -288,8 +288,8 @@ std::pair<double, double> cross_equalised_echo_density(const Signal& x, double o
   auto density = [&](const Signal& s, double onset_s, const std::vector<float>& eq) {
     std::vector<float> z = fft_convolve(s.samples, eq);
     z.resize(s.size());
-    const double ed_hi = std::min(4000.0, 0.45 * fs);
-    const std::vector<double> band = sos_filter(butterworth_bandpass(2, 1000.0, ed_hi, fs), z);
+    const double ed_hi = std::min(options.echo_density_high_hz, 0.45 * fs);
+    const std::vector<double> band = sos_filter(butterworth_bandpass(2, options.echo_density_low_hz, ed_hi, fs), z);
     const std::vector<float> bandf(band.begin(), band.end());
     const double start = onset_s + 0.0005;
     return mean_echo_density(bandf, fs, static_cast<size_t>(std::max(0.0, (start + options.echo_density_begin_ms * 1e-3) * fs)),

@@ -35,9 +35,8 @@ struct Case {
   std::set<std::string> hidden;
   uint64_t seed;
   testing::HiddenOptions options;
-  // Effects whose detection is not asserted either way (reported): diffuse_scattering, whose
-  // statistic is too weak on the independent generator (see bench/RESULTS.md), and the
-  // transducer's low-frequency roll-off, which the short direct-sound window cannot resolve.
+  // Effects whose detection is not asserted either way (reported): the transducer's
+  // low-frequency roll-off, which the short direct-sound window cannot resolve.
   std::set<std::string> unasserted;
   // Effects expected although not hidden through the generator (pre-alignment reads as a time
   // offset, with the alignment as its parameter).
@@ -133,6 +132,18 @@ void check_recovery(const diagnose::Finding& f, const testing::HiddenSet& set, c
       EXPECT_NEAR(parameter(f, key), truth.at("directivity_db_" + std::to_string(b)), tolerance_db) << c.name << " " << key;
     }
   }
+  if (f.effect == "diffuse_scattering" && truth.count("scattering")) {
+    // Not the same quantity in the two models: the simulator moves a reflection's scattered share
+    // into its diffuse tail, the generator spreads it over one mean free time after the
+    // reflection ("rain"), so the simulator's early response gets denser per unit of scattering
+    // and its matching value is lower than the generator's (0.26-0.30 for a true 0.67-0.95,
+    // bench/diagnose/diagnose_probe). What is asserted is the direction and a clear move: more
+    // than 0.1 above the stated value (the hidden truth is 0.7-0.85 above it), and not above the
+    // truth; the held-out echo-density gain above checks that the value matches the response.
+    const double stated = set.stated.front().scattering[3];
+    EXPECT_GT(parameter(f, "scattering"), stated + 0.1) << c.name;
+    EXPECT_LE(parameter(f, "scattering"), truth.at("scattering") + 0.05) << c.name;
+  }
   if (f.effect == "room_modes" && truth.count("mode_decay_factor") && !truth.count("noise_level_db")) {
     // Modal decay relative to the stated low-band decay within 35 %: the low bands' T30 it
     // rests on mixes the modes with the room's own faster decay, so it reads low when the modes
@@ -211,18 +222,16 @@ testing::HiddenOptions long_decay() {
   return o;
 }
 
-const std::set<std::string> kScatteringUnasserted = {"diffuse_scattering"};
-
 INSTANTIATE_TEST_SUITE_P(
     Catalog, HiddenEffectTest,
     ::testing::Values(Case{"null_a", {}, 1}, Case{"null_b", {}, 2}, Case{"room_modes", {"room_modes"}, 3},
                       Case{"air_absorption", {"air_absorption"}, 4}, Case{"band_absorption", {"band_absorption"}, 5},
                       Case{"transducer_response", {"transducer_response"}, 6}, Case{"noise_floor", {"noise_floor"}, 7},
-                      Case{"diffuse_scattering", {"diffuse_scattering"}, 8, testing::HiddenOptions(), kScatteringUnasserted},
+                      Case{"diffuse_scattering", {"diffuse_scattering"}, 8},
                       Case{"time_offset", {"time_offset"}, 9},
                       Case{"modes_and_noise", {"room_modes", "noise_floor"}, 10},
                       Case{"transducer_and_offset", {"transducer_response", "time_offset"}, 11},
-                      Case{"air_and_scattering", {"air_absorption", "diffuse_scattering"}, 12, testing::HiddenOptions(), kScatteringUnasserted},
+                      Case{"air_and_scattering", {"air_absorption", "diffuse_scattering"}, 12},
                       Case{"source_directivity", {"source_directivity"}, 13},
                       Case{"directivity_and_band_absorption", {"source_directivity", "band_absorption"}, 14},
                       Case{"directivity_and_transducer", {"source_directivity", "transducer_response"}, 15}),
