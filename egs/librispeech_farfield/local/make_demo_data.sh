@@ -88,7 +88,9 @@ else
     utt=$spk-$num
     wav=$tmp/speech/wav/$utt.wav
     espeak-ng -v "$voice" -s 150 -w "$tmp/speech/wav/$utt.22k.wav" "$text"
-    sox "$tmp/speech/wav/$utt.22k.wav" -r 16000 -b 16 "$wav"
+    # -R everywhere: sox dithers when it writes 16 bits, with a random seed unless -R; without it
+    # no two demo runs gave the same audio (nor, through it, the same fits and tables).
+    sox -R "$tmp/speech/wav/$utt.22k.wav" -r 16000 -b 16 "$wav"
     rm "$tmp/speech/wav/$utt.22k.wav"
     add_utt "$set" "$utt" "$spk" "$out/speech/wav/$utt.wav" "$text"
   done
@@ -121,7 +123,7 @@ if have rirs/r3vival; then
     src=$shared_data/rirs/r3vival/RLRVarAcLab_Absorptive_${c}_${s}_R1_FRL10cm_ch7.wav
     [ -f "$src" ] || { echo "$0: missing $src" >&2; exit 1; }
     # -G: guard against clipping by the resampler (the files peak below 0.65).
-    sox -G "$src" -r 16000 -b 16 "$tmp/rirs/wav/$id.wav"
+    sox -R -G "$src" -r 16000 -b 16 "$tmp/rirs/wav/$id.wav"
     echo "$id $out/rirs/wav/$id.wav"
   done <"$tmp/rirs/meta.txt" >"$tmp/rirs/rir.scp"
   echo "rirs real: R3VIVAL measured RIRs (omni ch7, $(wc -l <"$tmp/rirs/rir.scp") of them) from $shared_data/rirs/r3vival" >>"$tmp/SOURCES"
@@ -147,7 +149,7 @@ if have noise/room_noise_8ch_rec_one.wav; then
   channels="1 2 3 4 5 6 7 8"
   [ "$size" = tiny ] && channels="1 2"
   for ch in $channels; do
-    sox -G "$shared_data/noise/room_noise_8ch_rec_one.wav" -r 16000 -b 16 "$tmp/noise/wav/roomnoise-ch$ch.wav" remix "$ch"
+    sox -R -G "$shared_data/noise/room_noise_8ch_rec_one.wav" -r 16000 -b 16 "$tmp/noise/wav/roomnoise-ch$ch.wav" remix "$ch"
     echo "roomnoise-ch$ch $out/noise/wav/roomnoise-ch$ch.wav"
   done >"$tmp/noise/noise.scp"
   echo "noise real: room noise re-recorded by an 8-mic array ($shared_data/noise/room_noise_8ch_rec_one.wav), one noise per channel" >>"$tmp/SOURCES"

@@ -98,10 +98,11 @@ synth() {  # one plan line -> 16 kHz 16-bit wav
   local wav=$out/$set/wav/$utt.wav
   mkdir -p "$out/$set/wav"
   case ${voice%%:*} in
-    espeak) espeak-ng -v "${voice#*:}" -s "$rate" -p "$pitch" --stdout "$text" | sox -q -t wav - -r 16000 -b 16 "$wav.tmp.wav" gain -n -3 ;;
+    # sox -R: repeatable dither (a random seed otherwise: the corpus would differ run to run).
+    espeak) espeak-ng -v "${voice#*:}" -s "$rate" -p "$pitch" --stdout "$text" | sox -R -q -t wav - -r 16000 -b 16 "$wav.tmp.wav" gain -n -3 ;;
     flite) flite -voice "${voice#*:}" --setf duration_stretch="$(awk -v r="$rate" 'BEGIN { printf "%.3f", 170 / r }')" \
              --setf int_f0_target_mean="$((70 + pitch * 2))" -t "$text" -o "$wav.tmp.wav.raw.wav" &&
-           sox -q "$wav.tmp.wav.raw.wav" -r 16000 -b 16 "$wav.tmp.wav" gain -n -3 && rm -f "$wav.tmp.wav.raw.wav" ;;
+           sox -R -q "$wav.tmp.wav.raw.wav" -r 16000 -b 16 "$wav.tmp.wav" gain -n -3 && rm -f "$wav.tmp.wav.raw.wav" ;;
   esac
   mv "$wav.tmp.wav" "$wav"
 }
