@@ -157,7 +157,7 @@ def main():
     w("  not evidence that there is no air absorption.")
     w("- diffuse_scattering's fitted value is the simulator's scattering that matches the measured")
     w("  early echo density, not a physical scattering coefficient: on the tests' independent")
-    w("  generator (another scattering model) a true 0.65-0.95 fits as 0.26-0.36")
+    w("  generator (another scattering model) a true 0.65-0.95 fits as 0.26-0.37")
     w("  (docs/results/diagnose_power.md). Its statistic reads 2-20 ms after the onset in 1-7 kHz")
     w("  since 2026-11-26; the earlier 5-45 ms / 1-4 kHz window was nearly saturated (fitted 0.26")
     w("  here then, 0.37 now).")
