@@ -4,6 +4,7 @@
 //   gan_forward_bench [--width=64] [--decoder=original|light] [--batch=16] [--threads=2]
 //                     [--precision=float32|bfloat16] [--reps=5]
 //                     [--generator=original|residual] [--correction-max-hz=0|500] [--lowpass-compare=1]
+//                     [--conv=auto|direct] [--allocator=reusing|libtorch]
 // (--generator=residual --correction-max-hz=500 --decoder=light: ts-rirgan-train's defaults, the
 // model gas-to-real runs by default; the GFLOP column counts the convolution layers only.)
 #include <c10/core/InferenceMode.h>
@@ -13,11 +14,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
+#include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
 
 namespace {
@@ -60,6 +63,7 @@ int main(int argc, char** argv) {
   const int threads = std::atoi(arg(argc, argv, "threads", "2").c_str());
   const int reps = std::atoi(arg(argc, argv, "reps", "5").c_str());
   const std::string precision = arg(argc, argv, "precision", "float32");
+  if (arg(argc, argv, "allocator", "reusing") == "reusing") tsrir::tune_memory_for_torch();
   tsrir::set_openblas_threads(1);
   tsrir::gan::set_torch_threads(threads);
   torch::manual_seed(1);
@@ -69,7 +73,16 @@ int main(int argc, char** argv) {
   g->eval();
   const auto dtype = precision == "bfloat16" ? torch::kBFloat16 : torch::kFloat32;
   g->to(dtype);
-  c10::InferenceMode inference;
+  // --conv=direct: every layer's direct form (what training computes), by running under
+  // NoGradGuard instead of InferenceMode (the FFT form of the stride-1 layers is inference-only).
+  const bool direct = arg(argc, argv, "conv", "auto") == "direct";
+  std::optional<c10::InferenceMode> inference;
+  std::optional<torch::NoGradGuard> no_grad;
+  if (direct) {
+    no_grad.emplace();
+  } else {
+    inference.emplace();
+  }
   const torch::Tensor x = (torch::rand({batch, 1, 16384}) * 2 - 1).to(dtype);
   g->forward(x);  // warm-up: oneDNN primitive creation
   std::vector<double> seconds;
@@ -105,7 +118,10 @@ int main(int argc, char** argv) {
   const std::string model = kind == "residual" ? decoder + ", residual" +
                                                       (correction_max_hz > 0 ? " <= " + std::to_string(int(correction_max_hz)) + " Hz" : "")
                                                 : decoder;
-  std::printf("| %d | %s | %d | %d | %s | %.1f | %.2f | %.1f | %.2f | %.0f |\n", width, model.c_str(), batch,
+  std::string variant = model;
+  if (direct) variant += ", direct conv";
+  if (arg(argc, argv, "allocator", "reusing") != "reusing") variant += ", LibTorch allocator";
+  std::printf("| %d | %s | %d | %d | %s | %.1f | %.2f | %.1f | %.2f | %.0f |\n", width, variant.c_str(), batch,
               threads, precision.c_str(), tsrir::gan::count_parameters(*g) / 1e6, gflop, 1000.0 * s,
               batch / s, gflop * batch / s);
   return 0;

@@ -14,6 +14,7 @@
 #include "asr/asr_data.h"
 #include "asr/asr_settings.h"
 #include "gan/gan_runtime.h"
+#include "gan/gan_tensor_allocator.h"
 #include "io/atomic_output.h"
 #include "io/owned_output.h"
 #include "util/error.h"
@@ -255,7 +256,7 @@ void write_log(const std::string& path, const std::vector<std::string>& rows) {
 
 AsrTrainResult train_asr(const AsrTrainOptions& o) {
   o.validate();
-  tune_malloc_for_training();
+  tune_memory_for_torch();
   set_openblas_threads(1);
   torch::set_num_threads(o.num_threads);
 

@@ -194,19 +194,17 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
     // The early echo density of one render carries its own random diffuse field: the per-RIR
     // error is taken against the mean of two renders (the eval seed and the next), which halves
     // that part of its variance, so a fit that matches the set's density shows as a gain.
-    double ed_base = 0.0, ed_ext = 0.0;
-    for (uint64_t r = 0; r < 2; ++r) {
-      const Signal bs = r == 0 ? base_s[k] : render_rir(options.baseline_model, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), eval_seed + 1);
-      const Signal es = r == 0 ? ext_s[k] : render_rir(ext_spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), eval_seed + 1);
-      const double bo = r == 0 ? base_f[k].onset_s : compute_features(bs, {}, obs.schroeder_hz[i], obs.t60_low_s[i]).onset_s;
-      const double eo = r == 0 ? ext_f[k].onset_s : compute_features(es, {}, obs.schroeder_hz[i], obs.t60_low_s[i]).onset_s;
-      const auto eb = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, bs, bo);
-      const auto ee = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, es, eo);
-      ed_base += 0.5 * (eb.first - eb.second);
-      ed_ext += 0.5 * (ee.first - ee.second);
-    }
-    ed_err_base[k] = std::abs(ed_base);
-    ed_err_ext[k] = std::abs(ed_ext);
+    auto density_error = [&](const Signal& render, double render_onset_s) {
+      const auto pair = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, render, render_onset_s);
+      return pair.first - pair.second;
+    };
+    auto second_render_error = [&](const std::string& spec) {
+      const Signal render = render_rir(spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), eval_seed + 1);
+      return density_error(render, onset_time_s(render));
+    };
+    ed_err_base[k] = std::abs(0.5 * density_error(base_s[k], base_f[k].onset_s) +
+                              0.5 * second_render_error(options.baseline_model));
+    ed_err_ext[k] = std::abs(0.5 * density_error(ext_s[k], ext_f[k].onset_s) + 0.5 * second_render_error(ext_spec));
   });
   for (const MetricDef& def : metric_defs()) {
     std::vector<double> eb, ee, diff;

@@ -99,8 +99,7 @@ class DiffuseScatteringEffect : public Effect {
         const size_t i = idx[k % idx.size()];
         const Signal s =
             render_rir(spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed + k / idx.size());
-        const double onset = compute_features(s, {}, obs.schroeder_hz[i], obs.t60_low_s[i]).onset_s;
-        const auto pair = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, s, onset);
+        const auto pair = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, s, onset_time_s(s));
         ed[k] = pair.first - pair.second;
       });
       got[g] = -mean_of(ed);  // increases with scattering, like the simulated density

@@ -126,6 +126,8 @@ std::vector<double> edc_db_curve(const Signal& rir, double onset_s, double step_
   return out;
 }
 
+double onset_time_s(const Signal& rir) { return onset_position(rir.samples) / rir.sample_rate_hz; }
+
 RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_freqs_hz, double schroeder_hz,
                              double t60_low_s, const FeatureOptions& options) {
   const double fs = rir.sample_rate_hz;

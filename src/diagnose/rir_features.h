@@ -63,6 +63,10 @@ struct RirFeatures {
 RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_freqs_hz, double schroeder_hz,
                              double t60_low_s, const FeatureOptions& options = {});
 
+// The first arrival in seconds, as compute_features(...).onset_s (interpolated peak of the first
+// sample within 12 dB of the RIR's peak) without the rest of the feature pass.
+double onset_time_s(const Signal& rir);
+
 // Early echo density (echo_density_low_hz..high_hz, echo_density_begin_ms..end_ms after the onset) of x convolved with
 // y's direct sound (2 ms around its onset, unit energy), and of y convolved with x's: both then
 // carry both measurement chains, so a transducer's colouration or ringing in one of them does not

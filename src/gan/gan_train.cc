@@ -16,6 +16,7 @@
 #include "gan/gan_loss_plot.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
+#include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
 #include "gan/ts_rirgan.h"
 #include "io/rir_set.h"
@@ -513,7 +514,7 @@ void check_resume_settings(const GanSettings& saved, const GanSettings& asked, c
 
 GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   validate(o);
-  tune_malloc_for_training();
+  tune_memory_for_torch();
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
   const torch::Device device = gan::parse_device(o.device);

@@ -10,6 +10,7 @@
 #include "gan/gan_input.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
+#include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
 #include "gan/ts_rirgan.h"
 #include "io/rir_set.h"
@@ -39,6 +40,7 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
     throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
   }
   const torch::ScalarType dtype = o.precision == "bfloat16" ? torch::kBFloat16 : torch::kFloat32;
+  tune_memory_for_torch();
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
   const torch::Device device = gan::parse_device(o.device);
@@ -63,6 +65,7 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   generator->to(device);
   generator->to(dtype);
   generator->eval();
+  drop_kept_tensor_memory();  // the checkpoint's other networks and optimiser state
   result.model_load_s = std::chrono::duration<double>(Clock::now() - t0).count();
   log_info("loaded " + network + " (width " + std::to_string(settings.width) + ", step " +
            std::to_string(step) + ") from " + checkpoint);

@@ -3,11 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
+#include <c10/core/CPUAllocator.h>
+#include <c10/core/InferenceMode.h>
+
 #include "gan/gan_networks.h"
+#include "gan/gan_tensor_allocator.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -98,6 +103,88 @@ TEST(GanLayers, SameConvMatchesTensorFlowDefinition) {
       EXPECT_LT(max_abs_diff(y[0], want), 1e-4) << "stride " << stride << " L " << L;
     }
   }
+}
+
+// Translation's FFT form of a stride-1 layer (InferenceMode, float32, CPU) against the float64
+// reference written from TF's definition, beside the direct form: same 1e-4 bound (O(1) values,
+// at most 25 * 16 products). Then the kept kernel spectrum must follow the weights: changed in
+// place (an optimiser step) or replaced (a checkpoint load), the FFT form still equals the new
+// direct form; and a layer whose weights were made under InferenceMode (no version counter)
+// takes the direct form, bit for bit.
+TEST(GanLayers, FftSameConvEqualsTheDirectForm) {
+  torch::manual_seed(31);
+  for (int kernel : {25, 9}) {
+    for (int64_t L : {64, 67, 256}) {
+      SameConv1d conv(16, 8, kernel, 1);
+      {
+        torch::NoGradGuard no_grad;
+        conv->named_parameters()["conv.bias"].uniform_(-0.5, 0.5);
+      }
+      const torch::Tensor x = torch::randn({3, 16, L});
+      torch::Tensor fft_form, direct_form;
+      {
+        c10::InferenceMode inference;
+        fft_form = conv->forward(x);
+        direct_form = conv->forward_direct(x);
+      }
+      ASSERT_EQ(fft_form.sizes(), direct_form.sizes());
+      EXPECT_FALSE(torch::equal(fft_form, direct_form)) << "the FFT form was not taken (kernel " << kernel << ")";
+      for (int b = 0; b < 3; ++b) {
+        int64_t out_len = 0;
+        const auto want = reference_same_conv(x[b], conv->named_parameters()["conv.weight"],
+                                              conv->named_parameters()["conv.bias"], 1, &out_len);
+        EXPECT_LT(max_abs_diff(fft_form[b], want), 1e-4) << "kernel " << kernel << " L " << L;
+      }
+      EXPECT_LT((fft_form - direct_form).abs().max().item<double>(), 1e-4);
+    }
+  }
+  SameConv1d conv(8, 8, 25, 1);
+  const torch::Tensor x = torch::randn({2, 8, 64});
+  auto fft_vs_direct = [&] {
+    c10::InferenceMode inference;
+    return (conv->forward(x) - conv->forward_direct(x)).abs().max().item<double>();
+  };
+  EXPECT_LT(fft_vs_direct(), 1e-4);
+  torch::Tensor weight = conv->named_parameters()["conv.weight"];
+  {
+    torch::NoGradGuard no_grad;
+    weight.mul_(-3.0);  // in place: same storage, new version
+  }
+  EXPECT_LT(fft_vs_direct(), 3e-4) << "kept spectrum not recomputed after an in-place change";
+  {
+    torch::NoGradGuard no_grad;
+    weight.set_(torch::randn(weight.sizes()));  // new storage
+  }
+  EXPECT_LT(fft_vs_direct(), 1e-4) << "kept spectrum not recomputed after the weights were replaced";
+  c10::InferenceMode inference;
+  SameConv1d made_in_inference(8, 8, 25, 1);
+  EXPECT_TRUE(torch::equal(made_in_inference->forward(x), made_in_inference->forward_direct(x)));
+}
+
+// The default generator (width 16, residual, 500 Hz correction, light decoder) under InferenceMode
+// (gas-to-real; FFT form at the bottleneck) against the same generator under NoGradGuard (direct
+// form, as in training): the corrections (output minus input, what the network adds) equal
+// within float32 rounding. A new generator's correction (last layer scaled to 10 %) is used: it is
+// the whole network's output, so the comparison sees every layer, not the input passed through.
+TEST(GanNetworks, TranslationForwardEqualsTrainingForward) {
+  torch::manual_seed(32);
+  Generator g(16, 25, InitKind::kHe, "light", "residual", 500.0);
+  torch::Tensor x = torch::randn({2, 1, 16384}) * 0.05;
+  x.narrow(2, 200, 1).fill_(1.0);
+  torch::Tensor training, translation;
+  {
+    torch::NoGradGuard no_grad;
+    training = g->forward(x);
+  }
+  {
+    c10::InferenceMode inference;
+    translation = g->forward(x);
+  }
+  const double correction = (training - x).norm().item<double>() / x.norm().item<double>();
+  EXPECT_GT(correction, 1e-3) << "the correction is too small for the comparison to mean anything";
+  const double difference = ((translation - training).norm() / (training - x).norm()).item<double>();
+  std::cerr << "relative correction " << correction << ", FFT vs direct (of the correction) " << difference << "\n";
+  EXPECT_LT(difference, 1e-5);
 }
 
 TEST(GanLayers, SameConvTransposeMatchesTensorFlowDefinition) {
@@ -393,4 +480,45 @@ TEST(GanCheckpoint, RoundTripAndErrors) {
   { std::ofstream(dir + "/truncated.pt", std::ios::binary) << bytes.substr(0, bytes.size() / 2); }
   EXPECT_THROW(load_checkpoint(dir + "/truncated.pt", b), Error);
   fs::remove_all(dir);
+}
+
+// tune_memory_for_torch(): blocks of >= 1 MiB come from the reusing allocator, 2 MiB aligned, and a
+// freed block is handed out again for the next request of its rounded size; smaller tensors and the
+// raw interface keep working; the arithmetic is unchanged; drop_kept_tensor_memory() unmaps what is
+// kept. (Whether the kernel backs the blocks with huge pages is its choice, not asserted.)
+TEST(GanAllocator, ReusesLargeBlocksAndKeepsResults) {
+  tune_memory_for_torch();
+  tune_memory_for_torch();  // idempotent
+  const TensorAllocatorStats before = tensor_allocator_stats();
+  const void* first = nullptr;
+  {
+    torch::Tensor big = torch::empty({1 << 20});  // 4 MiB
+    first = big.data_ptr();
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(first) % (2u << 20), 0u);
+    big.fill_(2.0f);
+    EXPECT_EQ(big.sum().item<double>(), 2.0 * (1 << 20));
+  }
+  {
+    torch::Tensor again = torch::empty({(1 << 20) - 1000});  // same rounded size
+    EXPECT_EQ(again.data_ptr(), first);
+  }
+  const TensorAllocatorStats after = tensor_allocator_stats();
+  EXPECT_GE(after.blocks_reused, before.blocks_reused + 1);
+  EXPECT_GT(after.bytes_kept_free, 0u);
+  torch::manual_seed(33);
+  const torch::Tensor a = torch::randn({700, 600}, torch::kDouble), b = torch::randn({600, 500}, torch::kDouble);
+  const torch::Tensor small = torch::ones({10});  // below 1 MiB: LibTorch's own allocator
+  EXPECT_EQ(small.sum().item<double>(), 10.0);
+  const torch::Tensor product = torch::matmul(a, b);  // 2.8 MB result
+  double want = 0.0;
+  for (int64_t k = 0; k < 600; ++k) want += a[3][k].item<double>() * b[k][7].item<double>();
+  EXPECT_NEAR(product[3][7].item<double>(), want, 1e-9 * std::max(1.0, std::abs(want)));
+  c10::Allocator* allocator = c10::GetCPUAllocator();
+  for (size_t bytes : {size_t(100), size_t(3) << 20}) {
+    void* raw = allocator->raw_allocate(bytes);
+    std::memset(raw, 1, bytes);
+    allocator->raw_deallocate(raw);
+  }
+  drop_kept_tensor_memory();
+  EXPECT_EQ(tensor_allocator_stats().bytes_kept_free, 0u);
 }
