@@ -8,7 +8,8 @@ namespace tsrir {
 // Found through dlsym so the build does not depend on which BLAS libtorch was linked with.
 void set_openblas_threads(int n);
 // Large activations are allocated and freed every step; keeping them on the heap instead of
-// mmap/munmap removes ~1M page faults per paper-width step.
+// mmap/munmap removes ~1M page faults per paper-width step. Programs call it through
+// tune_memory_for_torch() (gan_tensor_allocator.h), which also takes tensors of >= 1 MiB off the heap.
 void tune_malloc_for_training();
 double peak_rss_mb();
 
