@@ -24,13 +24,13 @@ InitKind parse_init_kind(const std::string& name);  // "glorot" | "he"; Error ot
 // Under c10::InferenceMode (translation), a stride-1 float32 layer on the CPU computes the same
 // sum by FFT: per frequency one complex [batch, in] x [in, out] product instead of k real ones,
 // ~6x fewer operations for k = 25 at the generator's bottleneck (length 64, 8w channels), which
-// holds 62 % of the light decoder's direct-form FLOPs at width 64 (1.3x faster forward measured,
+// holds 62 % of the light decoder's direct-form FLOPs at width 64 (forward 1.4x faster measured,
 // bench/RESULTS.md; the transposed and strided layers, 7-8 taps after their phase split, measured
-// slower by FFT and stay direct). The kernel's spectrum is computed
-// once and kept (re-computed when the weights change or move); training (autograd, NoGradGuard)
-// always takes the direct form, so the FFT form changes translation only by float32 rounding
-// (tests/gan: GanLayers.FftSameConvEqualsTheDirectForm). Cost: the kept spectrum, ~(n/2+1)/k
-// times the weights' memory (n, the FFT length, ~ length + k).
+// slower by FFT and stay direct). The kernel's spectrum is computed once and kept (recomputed
+// when the weights change or move); training (autograd, NoGradGuard) always takes the direct
+// form, so the FFT form changes translation only by float32 rounding (tests/gan:
+// GanLayers.FftSameConvEqualsTheDirectForm). Cost: the kept spectrum, 2(n/2+1)/k times the
+// weights' memory (n, the FFT length, >= length + k - 1): ~96 MB per bottleneck layer at width 64.
 class SameConv1dImpl : public torch::nn::Module {
  public:
   SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,

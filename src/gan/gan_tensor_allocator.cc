@@ -22,8 +22,10 @@ constexpr size_t kMaxKeptBytes = size_t(1) << 30;    // free blocks kept for reu
 
 size_t round_up(size_t n, size_t to) { return (n + to - 1) / to * to; }
 
-// Large blocks: live ones (pointer -> size) and free ones kept for reuse (size -> pointers).
-// Never destroyed: tensors freed during static destruction still find it.
+// Large blocks (sizes rounded up to 2 MiB multiples): live ones (pointer -> size) and free ones
+// kept for reuse, oldest first. Reuse needs the same rounded size, which the repeated passes of
+// training and translation ask for. Never destroyed: tensors freed during static destruction
+// still find it.
 class BlockPool {
  public:
   void* acquire(size_t size) {
