@@ -77,6 +77,14 @@ double band_late_decay_db(const std::vector<double>& y) {
   return level(7 * n / 10, 8 * n / 10) - level(9 * n / 10, n);
 }
 
+// The band the echo-density statistic reads (FeatureOptions::echo_density_low_hz..high_hz, the
+// top capped at 0.45 fs), as float samples for mean_echo_density.
+std::vector<float> echo_density_band(const std::vector<float>& h, double fs, const FeatureOptions& options) {
+  const double high_hz = std::min(options.echo_density_high_hz, 0.45 * fs);
+  const std::vector<double> band = sos_filter(butterworth_bandpass(2, options.echo_density_low_hz, high_hz, fs), h);
+  return std::vector<float>(band.begin(), band.end());
+}
+
 }  // namespace
 
 bool direct_band_reliable(int band, double fs) {
@@ -192,9 +200,7 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
 
   // Echo density of the mid/high band (low frequencies would measure the room's modes, not its
   // reflections).
-  const double ed_hi = std::min(options.echo_density_high_hz, 0.45 * fs);
-  const std::vector<double> band = sos_filter(butterworth_bandpass(2, options.echo_density_low_hz, ed_hi, fs), h);
-  const std::vector<float> bandf(band.begin(), band.end());
+  const std::vector<float> bandf = echo_density_band(h, fs, options);
   const size_t ed_begin = static_cast<size_t>(std::max(0.0, onset + options.echo_density_begin_ms * 1e-3 * fs));
   const size_t ed_end = static_cast<size_t>(std::max(0.0, onset + options.echo_density_end_ms * 1e-3 * fs));
   f.echo_density = mean_echo_density(bandf, fs, ed_begin, ed_end);
@@ -290,9 +296,7 @@ std::pair<double, double> cross_equalised_echo_density(const Signal& x, double o
   auto density = [&](const Signal& s, double onset_s, const std::vector<float>& eq) {
     std::vector<float> z = fft_convolve(s.samples, eq);
     z.resize(s.size());
-    const double ed_hi = std::min(options.echo_density_high_hz, 0.45 * fs);
-    const std::vector<double> band = sos_filter(butterworth_bandpass(2, options.echo_density_low_hz, ed_hi, fs), z);
-    const std::vector<float> bandf(band.begin(), band.end());
+    const std::vector<float> bandf = echo_density_band(z, fs, options);
     const double start = onset_s + 0.0005;
     return mean_echo_density(bandf, fs, static_cast<size_t>(std::max(0.0, (start + options.echo_density_begin_ms * 1e-3) * fs)),
                              static_cast<size_t>(std::max(0.0, (start + options.echo_density_end_ms * 1e-3) * fs)));

@@ -1,7 +1,6 @@
 #include "gan/gan_runtime.h"
 
 #include <dlfcn.h>
-#include <malloc.h>
 #include <sys/resource.h>
 
 #include <csignal>
@@ -11,11 +10,6 @@ namespace tsrir {
 void set_openblas_threads(int n) {
   using SetThreads = void (*)(int);
   if (auto fn = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) fn(n);
-}
-
-void tune_malloc_for_training() {
-  mallopt(M_MMAP_MAX, 0);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
 }
 
 double peak_rss_mb() {

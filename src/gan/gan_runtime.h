@@ -1,5 +1,6 @@
-// Process-level settings that decide CPU training speed (docs/reference/toolchain.md pitfalls 2 and 3), the peak
-// memory report, and the stop-between-steps flag for SIGINT/SIGTERM.
+// Process-level settings that decide CPU training speed (docs/reference/toolchain.md pitfalls 2 and
+// 3; memory: gan_tensor_allocator.h), the peak memory report, and the stop-between-steps flag for
+// SIGINT/SIGTERM.
 #pragma once
 
 namespace tsrir {
@@ -7,10 +8,6 @@ namespace tsrir {
 // OpenBLAS runs its own thread pool on top of torch's; with torch threads in use it must be 1.
 // Found through dlsym so the build does not depend on which BLAS libtorch was linked with.
 void set_openblas_threads(int n);
-// Large activations are allocated and freed every step; keeping them on the heap instead of
-// mmap/munmap removes ~1M page faults per paper-width step. Programs call it through
-// tune_memory_for_torch() (gan_tensor_allocator.h), which also takes tensors of >= 1 MiB off the heap.
-void tune_malloc_for_training();
 double peak_rss_mb();
 
 // While alive, SIGINT/SIGTERM only set a flag (checked between training steps); a second

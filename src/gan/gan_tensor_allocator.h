@@ -6,7 +6,7 @@
 namespace tsrir {
 
 // Makes tensor memory cheap to get again, for every LibTorch program here (training, translation,
-// the recogniser): the heap keeps what is freed (tune_malloc_for_training), and LibTorch's CPU
+// the recogniser): glibc's heap keeps what is freed (no mmap), and LibTorch's CPU
 // allocator is replaced, once per process, by one that backs each block of >= 1 MiB with
 // transparent huge pages (madvise, 2 MiB aligned) and keeps freed blocks for reuse by the next
 // request of the same rounded size. Why: a generator pass allocates and frees hundreds of MB of
