@@ -4,7 +4,7 @@
 //   gan_forward_bench [--width=64] [--decoder=original|light] [--batch=16] [--threads=2]
 //                     [--precision=float32|bfloat16] [--reps=5]
 //                     [--generator=original|residual] [--correction-max-hz=0|500] [--lowpass-compare=1]
-//                     [--conv=auto|direct] [--allocator=reusing|libtorch]
+//                     [--conv=auto|direct] [--allocator=reusing|libtorch] [--bins=parallel|serial]
 // (--generator=residual --correction-max-hz=500 --decoder=light: ts-rirgan-train's defaults, the
 // model gas-to-real runs by default; the GFLOP column counts the convolution layers only.)
 #include <c10/core/InferenceMode.h>
@@ -20,6 +20,7 @@
 
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
+#include "gan/gan_binwise_product.h"
 #include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
 
@@ -64,6 +65,10 @@ int main(int argc, char** argv) {
   const int reps = std::atoi(arg(argc, argv, "reps", "5").c_str());
   const std::string precision = arg(argc, argv, "precision", "float32");
   if (arg(argc, argv, "allocator", "reusing") == "reusing") tsrir::tune_memory_for_torch();
+  // --bins=serial: the FFT form's per-bin products one after another (torch::matmul), as before
+  // they were shared among the threads (gan_binwise_product.h).
+  const bool serial_bins = arg(argc, argv, "bins", "parallel") == "serial";
+  tsrir::gan::allow_parallel_binwise_product(!serial_bins);
   tsrir::set_openblas_threads(1);
   tsrir::gan::set_torch_threads(threads);
   torch::manual_seed(1);
@@ -120,6 +125,7 @@ int main(int argc, char** argv) {
                                                 : decoder;
   std::string variant = model;
   if (direct) variant += ", direct conv";
+  if (serial_bins && !direct) variant += ", serial bins";
   if (arg(argc, argv, "allocator", "reusing") != "reusing") variant += ", LibTorch allocator";
   std::printf("| %d | %s | %d | %d | %s | %.1f | %.2f | %.1f | %.2f | %.0f |\n", width, variant.c_str(), batch,
               threads, precision.c_str(), tsrir::gan::count_parameters(*g) / 1e6, gflop, 1000.0 * s,

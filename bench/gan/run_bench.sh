@@ -75,8 +75,9 @@ done
 # The defaults' generator (residual, 500 Hz correction, light decoder), float32, batch 16, with and
 # without each inference change of 2026-11-26 evening, in this run: the FFT form of the stride-1
 # layers (--conv=direct: every layer direct, as in training) and the reusing huge-page allocator
-# (--allocator=libtorch: LibTorch's own).
-for variant in "" "--conv=direct" "--allocator=libtorch" "--conv=direct --allocator=libtorch"; do
+# (--allocator=libtorch: LibTorch's own); and of the FFT form's per-bin products shared among the
+# threads (2026-11-26 night; --bins=serial: one after another, as torch::matmul runs them).
+for variant in "" "--bins=serial" "--conv=direct" "--allocator=libtorch" "--conv=direct --allocator=libtorch"; do
   "$bin/gan_forward_bench" --width=64 --decoder=light --generator=residual --correction-max-hz=500 --batch=16 \
     --threads=$threads --precision=float32 --reps=5 $variant
 done

@@ -7,6 +7,7 @@
 #include <c10/core/InferenceMode.h>
 #include <torch/fft.h>
 
+#include "gan/gan_binwise_product.h"
 #include "io/atomic_output.h"
 #include "util/error.h"
 
@@ -167,7 +168,7 @@ torch::Tensor SameConv1dImpl::correlate_by_fft(const torch::Tensor& padded, int6
     spectrum_weight_data_ = weight.data_ptr();
   }
   const torch::Tensor x_spectrum = torch::fft::rfft(padded, fft_length, -1).permute({2, 0, 1});  // [bins, batch, in]
-  const torch::Tensor y_spectrum = torch::matmul(x_spectrum, kernel_spectrum_);                  // [bins, batch, out]
+  const torch::Tensor y_spectrum = binwise_complex_matmul(x_spectrum, kernel_spectrum_);          // [bins, batch, out]
   return torch::fft::irfft(y_spectrum.permute({1, 2, 0}), fft_length, -1).narrow(-1, 0, out_length) +
          conv_->bias.view({1, -1, 1});
 }

@@ -22,7 +22,8 @@ InitKind parse_init_kind(const std::string& name);  // "glorot" | "he"; Error ot
 // smaller half on the left. Cross-correlation, bias, Glorot-uniform kernel, zero bias.
 //
 // Under c10::InferenceMode (translation), a stride-1 float32 layer on the CPU computes the same
-// sum by FFT: per frequency one complex [batch, in] x [in, out] product instead of k real ones,
+// sum by FFT: per frequency one complex [batch, in] x [in, out] product instead of k real ones
+// (the frequencies shared among torch's threads, gan_binwise_product.h),
 // ~6x fewer operations for k = 25 at the generator's bottleneck (length 64, 8w channels), which
 // holds 62 % of the light decoder's direct-form FLOPs at width 64 (forward 1.4x faster measured,
 // bench/RESULTS.md; the transposed and strided layers, 7-8 taps after their phase split, measured

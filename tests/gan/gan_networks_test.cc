@@ -11,7 +11,9 @@
 #include <c10/core/CPUAllocator.h>
 #include <c10/core/InferenceMode.h>
 
+#include "gan/gan_binwise_product.h"
 #include "gan/gan_networks.h"
+#include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
 #include "util/error.h"
 
@@ -159,6 +161,46 @@ TEST(GanLayers, FftSameConvEqualsTheDirectForm) {
   c10::InferenceMode inference;
   SameConv1d made_in_inference(8, 8, 25, 1);
   EXPECT_TRUE(torch::equal(made_in_inference->forward(x), made_in_inference->forward_direct(x)));
+}
+
+// The FFT form's per-bin products shared among threads (one cgemm per bin, gan_binwise_product.h)
+// against complex128 products done by torch (zgemm, another routine and precision), on sizes
+// that are not multiples of anything and an input that is a permuted view, as correlate_by_fft
+// passes it; then the whole FFT convolution with the sharing on and off against the direct form.
+TEST(GanLayers, BinwiseProductSharedAmongThreadsEqualsEachBinsProduct) {
+  set_openblas_threads(1);  // as every program sets it
+  set_torch_threads(2);
+  ASSERT_TRUE(binwise_product_is_parallel()) << "OpenBLAS's cblas_cgemm not found in the process, or torch has one thread";
+  torch::manual_seed(33);
+  const int64_t bins = 7, rows = 3, inner = 37, cols = 5;
+  const torch::Tensor x =
+      torch::complex(torch::randn({rows, inner, bins}), torch::randn({rows, inner, bins})).permute({2, 0, 1});
+  const torch::Tensor w = torch::complex(torch::randn({bins, inner, cols}), torch::randn({bins, inner, cols}));
+  ASSERT_FALSE(x.is_contiguous());
+  const torch::Tensor shared = binwise_complex_matmul(x, w);
+  const torch::Tensor want = torch::matmul(x.to(torch::kComplexDouble), w.to(torch::kComplexDouble));
+  ASSERT_EQ(shared.sizes(), want.sizes());
+  const double scale = want.abs().max().item<double>();
+  EXPECT_LT((shared.to(torch::kComplexDouble) - want).abs().max().item<double>() / scale, 1e-6);
+
+  allow_parallel_binwise_product(false);
+  EXPECT_FALSE(binwise_product_is_parallel());
+  EXPECT_TRUE(torch::equal(binwise_complex_matmul(x, w), torch::matmul(x, w))) << "the switch did not give torch::matmul";
+  allow_parallel_binwise_product(true);
+  set_openblas_threads(2);
+  EXPECT_FALSE(binwise_product_is_parallel()) << "a threaded OpenBLAS must not be called from several threads";
+  set_openblas_threads(1);
+
+  SameConv1d conv(24, 20, 25, 1);
+  const torch::Tensor signal = torch::randn({5, 24, 83});
+  c10::InferenceMode inference;
+  const torch::Tensor direct = conv->forward_direct(signal);
+  const torch::Tensor parallel_form = conv->forward(signal);
+  allow_parallel_binwise_product(false);
+  const torch::Tensor serial_form = conv->forward(signal);
+  allow_parallel_binwise_product(true);
+  EXPECT_LT((parallel_form - direct).abs().max().item<double>(), 1e-4);
+  EXPECT_LT((parallel_form - serial_form).abs().max().item<double>(), 1e-5);
 }
 
 // The default generator (width 16, residual, 500 Hz correction, light decoder) under InferenceMode
