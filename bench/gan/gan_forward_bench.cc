@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "gan/gan_binwise_product.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
-#include "gan/gan_binwise_product.h"
 #include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
 

@@ -3,7 +3,9 @@
 #include <ATen/Parallel.h>
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <atomic>
+#include <climits>
 #include <complex>
 
 namespace tsrir::gan {
@@ -42,7 +44,7 @@ torch::Tensor binwise_complex_matmul(const torch::Tensor& x, const torch::Tensor
   const bool fits = x.dim() == 3 && w.dim() == 3 && x.size(0) == w.size(0) && x.size(2) == w.size(1) &&
                     x.scalar_type() == torch::kComplexFloat && w.scalar_type() == torch::kComplexFloat &&
                     x.device().is_cpu() && w.device().is_cpu() && x.size(1) > 0 && w.size(2) > 0 &&
-                    x.size(2) > 0;
+                    x.size(2) > 0 && std::max({x.size(1), x.size(2), w.size(2)}) <= INT_MAX;  // CBLAS takes int
   if (!fits || !binwise_product_is_parallel()) return torch::matmul(x, w);
   const torch::Tensor a = x.contiguous(), b = w.contiguous();
   const int64_t bins = a.size(0), rows = a.size(1), inner = a.size(2), cols = b.size(2);
