@@ -30,7 +30,10 @@ std::vector<Threshold> AirAbsorptionThresholds::list() const {
 std::vector<Threshold> BandAbsorptionThresholds::list() const {
   return {{"min_rate_ratio", min_rate_ratio,
            "some room's band decay rate departs by this factor (8 %: about the just-noticeable difference of "
-           "reverberation time) at p < alpha / (rooms x bands)"}};
+           "reverberation time) at p < alpha / (rooms x bands), beyond the uniform change a room-size error allows"},
+          {"max_size_error", max_size_error,
+           "stated room dimensions are trusted to this fraction (5 %): a uniform change of every band's decay "
+           "rate up to 1 / (1 - 0.05) is taken as geometry, not absorption"}};
 }
 
 double air_log_ratio(int band, const AirFit& fit, double base_rate, double temperature_c, double c) {
@@ -147,17 +150,43 @@ DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_mode
     bool residual_significant = false, raw_significant = false, raw_significant_air = false;
     side->worst_band = -1;
     side->worst_ratio = 0.0;
+    // A room whose stated dimensions are off by up to max_size_error decays faster or slower in
+    // every band by the same factor (Eyring: the rate goes as S / V, 1 / size): that much of a
+    // uniform change is geometry, not absorption. Per room, the weighted mean change over the
+    // tested bands, clamped to that range, is taken out before the per-band test.
+    const double max_uniform = -std::log1p(-kBandThresholds.max_size_error);
+    auto geometry_share = [&](const std::vector<OneSampleTest>& tests) {
+      double w_sum = 0.0, wx = 0.0;
+      for (const OneSampleTest& t : tests) {
+        if (t.n < 3) continue;
+        const double w = 1.0 / std::pow(std::max(t.standard_error, 1e-4), 2);
+        w_sum += w;
+        wx += w * t.mean;
+      }
+      return w_sum > 0.0 ? std::clamp(wx / w_sum, -max_uniform, max_uniform) : 0.0;
+    };
     for (const auto& [g, idx] : groups) {
       if (idx.size() < 3) continue;
-      for (int b : tested) {
+      std::vector<std::vector<double>> r(tested.size()), raw(tested.size());
+      std::vector<OneSampleTest> tr(tested.size()), t0(tested.size());
+      for (size_t k = 0; k < tested.size(); ++k) {
+        const int b = tested[k];
         const double curve = air_log_ratio(b, side->fit, group_base[g][b], temp, c);
-        std::vector<double> r, raw;
-        for (size_t i : idx) { r.push_back(x[b][i] - curve); raw.push_back(x[b][i]); }
-        const OneSampleTest tr = t_test(r), t0 = t_test(raw);
-        if (std::abs(tr.mean) > min_ratio && std::abs(tr.t) > t_crit) residual_significant = true;
-        if (std::abs(t0.mean) > min_ratio && std::abs(t0.t) > t_crit) raw_significant = true;
-        if (std::abs(t0.mean) > std::log(kAirThresholds.min_top_rate_ratio) && std::abs(t0.t) > t_crit) raw_significant_air = true;
-        if (std::abs(t0.mean) > std::abs(side->worst_ratio)) { side->worst_ratio = t0.mean; side->worst_band = b; side->worst_room = g; }
+        for (size_t i : idx) { r[k].push_back(x[b][i] - curve); raw[k].push_back(x[b][i]); }
+        tr[k] = t_test(r[k]);
+        t0[k] = t_test(raw[k]);
+      }
+      const double share_r = geometry_share(tr), share_0 = geometry_share(t0);
+      for (size_t k = 0; k < tested.size(); ++k) {
+        const int b = tested[k];
+        // Air's own test reads the raw change (air is not geometry: it grows with frequency).
+        if (std::abs(t0[k].mean) > std::log(kAirThresholds.min_top_rate_ratio) && std::abs(t0[k].t) > t_crit) raw_significant_air = true;
+        for (double& v : r[k]) v -= share_r;
+        for (double& v : raw[k]) v -= share_0;
+        const OneSampleTest br = t_test(r[k]), b0 = t_test(raw[k]);
+        if (std::abs(br.mean) > min_ratio && std::abs(br.t) > t_crit) residual_significant = true;
+        if (std::abs(b0.mean) > min_ratio && std::abs(b0.t) > t_crit) raw_significant = true;
+        if (std::abs(b0.mean) > std::abs(side->worst_ratio)) { side->worst_ratio = b0.mean; side->worst_band = b; side->worst_room = g; }
       }
     }
     const double top = tested.empty() ? 0.0 : side->air_curve[tested.back()];

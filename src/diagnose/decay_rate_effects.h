@@ -28,6 +28,7 @@ inline constexpr AirAbsorptionThresholds kAirThresholds{};
 
 struct BandAbsorptionThresholds {
   double min_rate_ratio = 1.08;
+  double max_size_error = 0.05;
   std::vector<Threshold> list() const;
 };
 inline constexpr BandAbsorptionThresholds kBandThresholds{};
@@ -57,7 +58,7 @@ struct DecayRateSide {
   bool air_fires = false;
   bool band_fires = false;
   int worst_band = -1;
-  double worst_ratio = 0.0;   // the largest raw per-band, per-room mean log ratio
+  double worst_ratio = 0.0;   // the largest raw per-band, per-room mean log ratio beyond geometry's share
   std::string worst_room;
   BandValues air_curve{};     // the fitted air curve per tested band (NaN elsewhere)
   double uniform_chi2 = 0.0;  // chi-square of one rate factor for all bands

@@ -1,7 +1,9 @@
 // band_absorption: some band of some room decays faster or slower than its stated absorption gives
 // (the absorption prior is wrong per band: panels, furniture, people).
 //   Statistic  per-room, per-band mean log decay-rate ratio ln(rate_measured / rate_simulated),
-//              t-tested per band and room (Bonferroni over rooms x bands). When air_absorption is
+//              less the share a room-size error explains (the room's mean change over the bands,
+//              clamped to what a 5 % size error gives: it changes every band alike), t-tested per
+//              band and room (Bonferroni over rooms x bands). When air_absorption is
 //              detected, the residual after the air curve is tested; otherwise the raw ratio, and
 //              the refit then also absorbs air's share (decay_rate_effects.h).
 //   Depends    room_modes: bands below twice the Schroeder frequency are left to it when it is
@@ -54,6 +56,8 @@ class BandAbsorptionEffect : public Effect {
                     (a.measured.worst_band >= 0 ? " at " + band_name(a.measured.worst_band) : std::string()) +
                     (a.num_rooms > 1 ? " in room " + a.measured.worst_room : std::string()) + " (threshold " +
                     num(100.0 * (kBandThresholds.min_rate_ratio - 1.0)) + "% at |t| > " + num(a.t_crit) +
+                    ", beyond a uniform change of up to " + num(100.0 * (1.0 / (1.0 - kBandThresholds.max_size_error) - 1.0), 2) +
+                    "% for a room-size error" +
                     (ctx.detected("air_absorption") ? ", after the air-absorption fit" : "") + ")" +
                     (a.low_bands_left_to_modes ? "; bands below " + num(2.0 * a.schroeder_hz) + " Hz are left to room_modes"
                                                : "") +

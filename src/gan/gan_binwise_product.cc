@@ -8,15 +8,15 @@
 #include <climits>
 #include <complex>
 
+#include "gan/gan_runtime.h"
+
 namespace tsrir::gan {
 namespace {
 
-// CBLAS's cgemm and OpenBLAS's thread query, found at run time as set_openblas_threads finds its
-// setter (gan_runtime.cc): libtorch brings its BLAS into the process, and the build does not
-// depend on which one it is.
+// CBLAS's cgemm, found at run time as gan_runtime.cc finds OpenBLAS's thread setter and query:
+// libtorch brings its BLAS into the process, and the build does not depend on which one it is.
 using Cgemm = void (*)(int order, int trans_a, int trans_b, int m, int n, int k, const void* alpha,
                        const void* a, int lda, const void* b, int ldb, const void* beta, void* c, int ldc);
-using GetThreads = int (*)();
 constexpr int kRowMajor = 101, kNoTrans = 111;
 
 Cgemm find_cgemm() {
@@ -25,11 +25,6 @@ Cgemm find_cgemm() {
 }
 
 std::atomic<bool> g_parallel_allowed{true};
-
-int openblas_threads() {
-  static const GetThreads fn = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  return fn ? fn() : -1;
-}
 
 }  // namespace
 

@@ -8,6 +8,8 @@ namespace tsrir {
 // OpenBLAS runs its own thread pool on top of torch's; with torch threads in use it must be 1.
 // Found through dlsym so the build does not depend on which BLAS libtorch was linked with.
 void set_openblas_threads(int n);
+// OpenBLAS's thread count, or -1 when the process has no OpenBLAS (another BLAS, or none).
+int openblas_threads();
 double peak_rss_mb();
 
 // While alive, SIGINT/SIGTERM only set a flag (checked between training steps); a second

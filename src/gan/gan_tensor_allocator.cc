@@ -12,7 +12,6 @@
 #include <new>
 #include <unordered_map>
 
-
 namespace tsrir {
 namespace {
 
