@@ -1,25 +1,44 @@
 #!/usr/bin/env bash
-# The downstream experiment's budget (issue 19: 8 sets x 1 seed within 60 minutes, 3 seeds within
-# 3 hours on 2 cores): runs stage 8's proxy path (local/asr/run_proxy.sh, conf/asr-train-proxy.conf)
-# on the demo's RIR sets and noise, then prints Table 2 and, per trained model, wall and CPU time
-# and peak memory (GNU time), with the machine's load. Needs the demo's stages 0-6 first:
-#   (cd egs/librispeech_farfield && ./run.sh --demo --stop-stage 6)
-# Usage: bench/asr/run_table2.sh [--sets "clean real ..."] [--seeds "0 1 2"] [--jobs 2] [--out DIR]
-#        [--corpus-opts "..."] [--train-opts "..."] [--train-config FILE]
-# e.g. the sensitivity check alone: bench/asr/run_table2.sh --sets "clean real" --seeds 0
+# Table 2 of the downstream experiment with its positive controls (issue 30), resumable in pieces.
+#
+# What it runs (each step is skipped when done with the same inputs, so the table can be made in
+# pieces of a few sets, seeds or one arm at a time; every piece appends its command, start, end and
+# load to <out>/pieces.md):
+#   1. the demo's stages 0-6 (run.sh --demo --stop-stage 6: real R3VIVAL RIRs split by source
+#      position, GAS, GAS+EQ, the demo's small translator's G sets, GAS-ext);
+#   2. positive controls: the real training RIRs with a known mismatch (rir-perturb): T60 x0.5,
+#      x0.33, x2, DRR -6 / +6 dB, low-frequency ringing +10 dB;
+#   3. two trained translators on the demo's real/GAS training split: the program's defaults and the
+#      paper's preset (conf/ts-rirgan-paper.conf), both width 16, batch 4, --gan-steps steps; their
+#      G(GAS), G(GAS+EQ), G(GAS)+EQ training sets (gas-to-real, rir-eq apply with the demo's EQ);
+#   4. per SNR arm (paper: 1..2 dB, the paper's; reverb: 15..25 dB, reverberation-dominated): the
+#      proxy recogniser (local/asr/run_proxy.sh, conf/asr-train-proxy.conf) trained per set and seed
+#      on one shared TTS corpus (24 voices x 50 utterances; 6 held-out voices x 40 for the test) with
+#      --train-copies reverberant copies per utterance, decoded on TTS and real speech convolved with
+#      the held-out real test RIRs plus real noise at the arm's SNR; Table 2 per arm (table2.py:
+#      run-level means with 95 % intervals, each set against GAS over runs, the controls' dose chains).
+#
+# Usage: bench/asr/run_table2.sh [--arms "paper reverb"] [--seeds "0 1 2 3 4"] [--sets "..."]
+#          [--jobs 2] [--out DIR] [--gan-steps 2000] [--train-copies 3]
+# e.g. the instrument check alone: bench/asr/run_table2.sh --arms reverb --sets "real ctl_t60x0.5 ctl_t60x0.33"
+# Default out: egs/librispeech_farfield/demo/table2. A piece stopped by Ctrl-C resumes where it
+# stopped (a model in training resumes from its last epoch).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 recipe=$root/egs/librispeech_farfield
-sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq gas_ext"
-seeds="0 1 2"
+controls="ctl_t60x0.5 ctl_t60x0.33 ctl_t60x2 ctl_drr-6 ctl_drr+6 ctl_lf+10"
+sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq gas_ext gas_gsrp gas_eq_gsrp gas_gsrp_eq gas_gsrt $controls"
+arms="paper reverb"
+seeds="0 1 2 3 4"
 jobs=2
-out=$recipe/demo/bench_asr
-extra=()
+out=$recipe/demo/table2
+gan_steps=2000
+train_copies=3
+cmdline="$0 $*"
 while [ $# -gt 0 ]; do
   case $1 in
-    --sets) sets=$2 ;; --seeds) seeds=$2 ;; --out) out=$2 ;; --jobs) jobs=$2 ;;
-    --corpus-opts) extra+=(--corpus-opts "$2") ;; --train-opts) extra+=(--train-opts "$2") ;;
-    --train-config) extra+=(--train-config "$(readlink -f "$2")") ;;
+    --sets) sets=$2 ;; --arms) arms=$2 ;; --seeds) seeds=$2 ;; --jobs) jobs=$2 ;; --out) out=$2 ;;
+    --gan-steps) gan_steps=$2 ;; --train-copies) train_copies=$2 ;;
     *) echo "$0: unknown option $1" >&2; exit 1 ;;
   esac
   shift 2
@@ -27,30 +46,133 @@ done
 mkdir -p "$out"; out=$(readlink -f "$out")
 cd "$recipe"
 . ./path.sh
-rirs=demo/data/rirs
-for s in $sets; do
-  [ "$s" = clean ] || [ -s "$rirs/${s}_train/rir_list" ] ||
-    { echo "$0: no $rirs/${s}_train: run the demo's stages 0-6 first (./run.sh --demo --stop-stage 6)" >&2; exit 1; }
+log() { echo "run_table2.sh: $*" >&2; }
+die() { echo "run_table2.sh: ERROR: $*" >&2; exit 1; }
+for p in rir-perturb ts-rirgan-train gas-to-real rir-eq asr-train asr-decode reverberate-data; do
+  command -v $p >/dev/null || die "$p not on PATH (build the toolkit)"
 done
-echo "# $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load at start: $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "# sets: $sets; seeds: $seeds; $jobs model(s) at a time; config: $(grep -v '^#' "$root/conf/asr-train-proxy.conf" | tr '\n' ' ')${extra[*]:+; extra: ${extra[*]}}"
-start=$SECONDS
-# Load sampled every minute while it runs (the figures below are only comparable at similar load).
-( while sleep 60; do cut -d' ' -f1 /proc/loadavg; done ) >"$out/load.txt" &
+snrs_of() { case $1 in paper) echo 1..2 ;; reverb) echo 15..25 ;; *) die "unknown arm '$1' (paper | reverb)" ;; esac; }
+for a in $arms; do snrs_of "$a" >/dev/null; done
+demo_rirs=$recipe/demo/data/rirs
+rirs=$out/rirs
+machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+start_time=$(date -u '+%Y-%m-%d %H:%M UTC'); start_load=$(cut -d' ' -f1-3 /proc/loadavg); t0=$SECONDS
+( while sleep 60; do cut -d' ' -f1 /proc/loadavg; done ) >"$out/load.$$.txt" &
 sampler=$!
 trap 'kill $sampler 2>/dev/null || true' EXIT
-local/asr/run_proxy.sh --train-sets "$sets" --seeds "$seeds" --jobs "$jobs" --real-speech "$root/../shared/data/speech" \
-  ${extra[@]+"${extra[@]}"} "$rirs" demo/data/noise/noise_list "$out/data" "$out/exp"
-wall=$((SECONDS - start))
+
+done_with() { [ -f "$1" ] && [ "$(cat "$1")" = "$2" ]; }
+mark() { printf '%s\n' "$2" >"$1.tmp" && mv "$1.tmp" "$1"; }
+
+# ---- 1. the demo's RIR sets ----
+prepare_demo() {
+  [ -s "$demo_rirs/real_test/rir_list" ] && [ -s "$demo_rirs/gas_ext_train/rir_list" ] && [ -f "$demo_rirs/split/split.txt" ] &&
+    grep -q groups= "$demo_rirs/split/split.txt" && return 0
+  log "running the demo's stages 0-6 (real RIRs split by source position, GAS, EQ, G, GAS-ext)"
+  ./run.sh --demo --stop-stage 6 >"$out/demo_stages.log" 2>&1 || { tail "$out/demo_stages.log" >&2; die "run.sh --demo --stop-stage 6 failed"; }
+}
+
+# ---- 2. positive controls ----
+control_opts() {
+  case $1 in
+    ctl_t60x*) echo "--t60-scale=${1#ctl_t60x}" ;;
+    ctl_drr*) echo "--drr-offset-db=${1#ctl_drr}" ;;
+    ctl_lf*) echo "--lf-ringing-db=${1#ctl_lf}" ;;
+    *) die "unknown control $1" ;;
+  esac
+}
+make_control() {  # <set>
+  local s=$1 o sig
+  o=$(control_opts "$s")
+  sig="$o $(md5sum <"$demo_rirs/real_train/rir_list")"
+  done_with "$rirs/${s}_train/.done" "$sig" && return 0
+  rir-perturb $o --seed=0 --num-threads=2 --overwrite "$demo_rirs/real_train/rir_list" "$rirs/${s}_train" 2>"$out/log/$s.log" ||
+    { tail "$out/log/$s.log" >&2; die "rir-perturb $o failed"; }
+  rir-metrics --reference="$demo_rirs/real_train/rir_list" "$rirs/${s}_train/rir_list" >"$rirs/${s}_train/metrics.txt" 2>>"$out/log/$s.log"
+  mark "$rirs/${s}_train/.done" "$sig"
+  log "control $s: $(tail -n 1 "$out/log/$s.log" | sed 's/^rir-perturb: perturbed //')"
+}
+
+# ---- 3. trained translators and their G sets ----
+train_translator() {  # <name> <extra options>
+  local name=$1 extra=$2 dir=$out/gan/$1 sig
+  sig="$extra steps=$gan_steps $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
+  done_with "$dir.done" "$sig" && return 0
+  local resume=()
+  [ -f "$dir/checkpoint.pt" ] && done_with "$dir.sig" "$sig" && resume=(--resume)
+  mkdir -p "$out/gan"; mark "$dir.sig" "$sig"
+  log "training the $name translator ($extra --width=16 --batch-size=4 --steps=$gan_steps)"
+  # shellcheck disable=SC2086
+  ts-rirgan-train $extra --width=16 --batch-size=4 --steps="$gan_steps" --seed=0 --num-threads=2 --overwrite \
+    --real="$demo_rirs/real_train/rir_list" --synthetic="$demo_rirs/gas_train/rir_list" ${resume[@]+"${resume[@]}"} "$dir" \
+    2>"$out/log/gan_$name.log" || { tail "$out/log/gan_$name.log" >&2; die "ts-rirgan-train ($name) failed"; }
+  mark "$dir.done" "$sig"
+}
+make_g_sets() {  # <suffix> <model-dir>: gas_gsr<suffix>, gas_eq_gsr<suffix>, gas_gsr<suffix>_eq
+  local x=$1 model=$2 sig
+  sig="$(cat "$model.done" 2>/dev/null || echo demo) $(md5sum <"$demo_rirs/gas_train/rir_list")"
+  if ! done_with "$rirs/gas_gsr${x}_train/.done" "$sig"; then
+    gas-to-real --model="$model" --format=int16 --num-threads=2 --overwrite "$demo_rirs/gas_train/rir_list" "$rirs/gas_gsr${x}_train" 2>>"$out/log/g$x.log"
+    mark "$rirs/gas_gsr${x}_train/.done" "$sig"
+  fi
+  if ! done_with "$rirs/gas_eq_gsr${x}_train/.done" "$sig"; then
+    gas-to-real --model="$model" --format=int16 --num-threads=2 --overwrite "$demo_rirs/gas_eq_train/rir_list" "$rirs/gas_eq_gsr${x}_train" 2>>"$out/log/g$x.log"
+    mark "$rirs/gas_eq_gsr${x}_train/.done" "$sig"
+  fi
+  if ! done_with "$rirs/gas_gsr${x}_eq_train/.done" "$sig"; then
+    rir-eq apply --config="$root/conf/rir-eq-apply.conf" --seed=0 --num-threads=2 --overwrite "$recipe/demo/exp/eq/eq.model" \
+      "$rirs/gas_gsr${x}_train/rir_list" "$rirs/gas_gsr${x}_eq_train" 2>>"$out/log/g$x.log"
+    mark "$rirs/gas_gsr${x}_eq_train/.done" "$sig"
+  fi
+}
+
+prepare_rirs() {
+  mkdir -p "$rirs" "$out/log"
+  prepare_demo
+  for s in real gas gas_eq gas_ext; do ln -sfn "$demo_rirs/${s}_train" "$rirs/${s}_train"; done
+  ln -sfn "$demo_rirs/real_test" "$rirs/real_test"
+  # The demo's small translator (width 8, 300 steps), kept as a labelled row.
+  ln -sfn "$demo_rirs/gas_gsr_train" "$rirs/gas_gsrt_train"
+  for s in $sets; do case $s in ctl_*) make_control "$s" ;; esac; done
+  if [[ " $sets " == *" gas_gsr "* || " $sets " == *" gas_eq_gsr "* || " $sets " == *" gas_gsr_eq "* ]]; then
+    train_translator default ""
+    make_g_sets "" "$out/gan/default"
+  fi
+  if [[ " $sets " == *" gas_gsrp"* || " $sets " == *" gas_eq_gsrp "* ]]; then
+    train_translator paper "--config=$root/conf/ts-rirgan-paper.conf"
+    make_g_sets p "$out/gan/paper"
+  fi
+}
+
+# The corpus: make_tts_corpus.sh's defaults (24 training voices x 50 utterances, 6 held-out voices x 40).
+corpus_opts=""
+
+run_arm() {  # <arm>
+  local arm=$1 d=$out/$1
+  mkdir -p "$d"
+  local dose="real ctl_t60x0.5 ctl_t60x0.33|real ctl_t60x2|real ctl_drr-6|real ctl_drr+6|real ctl_lf+10" chains="" c
+  # Only chains whose sets are all in this piece.
+  IFS='|' read -r -a all <<<"$dose"
+  for c in "${all[@]}"; do
+    local ok=true s
+    for s in $c; do [[ " $sets " == *" $s "* ]] || ok=false; done
+    $ok && chains+="${chains:+|}$c"
+  done
+  log "arm $arm (SNR $(snrs_of "$arm") dB): sets $sets; seeds $seeds"
+  local_args=(--train-sets "$sets" --seeds "$seeds" --jobs "$jobs" --snrs "$(snrs_of "$arm")"
+              --corpus-dir "$out/corpus" --corpus-opts "$corpus_opts" --train-copies "$train_copies"
+              --real-speech "$root/../shared/data/speech" --dose "$chains" --section "$d/table2.md")
+  local/asr/run_proxy.sh "${local_args[@]}" "$rirs" demo/data/noise/noise_list "$d/data" "$d/exp"
+}
+
+prepare_rirs
+for a in $arms; do run_arm "$a"; done
+
 kill $sampler 2>/dev/null || true
-echo
-echo "| model | wall s | CPU s (user+sys) | peak MB |"
-echo "|---|---|---|---|"
-for k in $seeds; do for s in $sets; do
-  t=$out/exp/asr/log/time_${s}_seed$k.txt
-  [ -f "$t" ] && awk -v m="${s}_seed$k" '{ printf "| %s | %.0f | %.0f | %.0f |\n", m, $1, $2 + $3, $4 / 1024 }' "$t"
-done; done
-echo
-cpu=$(awk '{ s += $2 + $3 } END { printf "%.0f", s }' "$out"/exp/asr/log/time_*.txt 2>/dev/null || echo 0)
-echo "total: $wall s wall (corpus, reverberation, training, decoding; models already trained are skipped), $cpu s CPU in training;" \
-  "load average during the run: $(awk '{ s += $1; n++ } END { if (n) printf "mean %.1f, max %.1f", s / n, m; else print "n/a" } { if ($1 > m) m = $1 }' "$out/load.txt"); at end: $(cut -d' ' -f1-3 /proc/loadavg)"
+wall=$((SECONDS - t0))
+{
+  echo "- \`$cmdline\`: $start_time -> $(date -u '+%H:%M UTC'), ${wall} s wall; $machine; load at start $start_load," \
+       "during the piece $(awk '{ s += $1; n++; if ($1 > m) m = $1 } END { if (n) printf "mean %.1f, max %.1f", s / n, m; else print "n/a" }' "$out/load.$$.txt")"
+} >>"$out/pieces.md"
+rm -f "$out/load.$$.txt"
+log "piece done in $wall s (recorded in $out/pieces.md)"

@@ -57,6 +57,9 @@ data=data
 exp=exp
 results=RESULTS.md
 split_sizes=773:194:242
+# RIRs that share these metadata fields (room size and source position) go to one split: no source
+# position is in both training and test, in any room condition (local/split_rirs.sh). "" = single RIRs.
+split_group_fields="3 4 5 6 7 8"
 absorption_range=0.1,0.6   # rir-room-list: uniform random absorption per RIR ...
 absorption_draw=surface    # ... drawn per surface (rir | surface | surface-band)
 sim_model=gas
@@ -86,6 +89,11 @@ asr_jobs=2            # proxy: models trained at once
 asr_corpus_opts=""    # proxy: local/asr/make_tts_corpus.sh options (default: its own)
 asr_train_config=../../conf/asr-train-proxy.conf   # proxy: asr-train --config (Table 2's configuration)
 asr_train_opts=""     # proxy: more asr-train options, overriding the config
+asr_train_sets=""     # proxy: its training sets (default: $train_sets); ctl_* names are positive
+                      # controls that stage 5 makes from the real training RIRs with rir-perturb:
+                      # ctl_t60x<S> (T60 x S), ctl_drr<+-D> (direct sound +-D dB), ctl_lf<+L> (LF ringing)
+asr_train_copies=3    # proxy: reverberant copies per training utterance, one per epoch (run_proxy.sh)
+asr_dose=""           # proxy: dose-response chains checked in Table 2, e.g. "real ctl_t60x0.33"
 lm_url=www.openslr.org/resources/11
 
 help_message="Usage: $0 [options]   (see the top of $0 for the stages)
@@ -134,6 +142,10 @@ if [ "$demo" = true ]; then
   # Stage 8 runs the proxy recogniser (no Kaldi needed). The small demo: Table 2's configuration
   # (conf/asr-train-proxy.conf, make_tts_corpus.sh's defaults; docs/results/downstream.md).
   # The tiny demo only proves that stage 8 runs: 2 utterances per voice, one epoch of a toy model.
+  # Eight models, as before the controls: G(GAS+EQ) gives its place to the positive control
+  # T60 x0.33 (the size of GAS's mismatch here), which Table 2 must show worse than real.
+  asr_train_sets="clean real gas gas_eq gas_gsr gas_gsr_eq gas_ext ctl_t60x0.33"
+  asr_dose="real ctl_t60x0.33"
   case $demo_size in
     tiny) asr_corpus_opts="--utts-per-train-voice 2 --utts-per-test-voice 2"
           asr_train_opts="--epochs=1 --conv-layers=1 --conv-channels=8 --rnn-layers=1 --rnn-hidden=8 --batch-size=4" ;;
@@ -205,6 +217,7 @@ set_label() {
     real) echo real ;; gas) echo GAS ;; gas_eq) echo GAS+EQ ;; gas_gsr) echo "G(GAS)" ;;
     gas_eq_gsr) echo "G(GAS+EQ)" ;; gas_gsr_eq) echo "G(GAS)+EQ" ;; clean) echo "clean" ;;
     gas_ext) echo "GAS-ext" ;;
+    ctl_*) echo "control ${1#ctl_}" ;;
     *) die "unknown RIR set name '$1'" ;;
   esac
 }
@@ -297,7 +310,7 @@ if [ $stage -le 1 ] && [ $stop_stage -ge 1 ]; then
   cp "$rir_source/meta.txt" "$rirs/real_all/meta.txt"
   awk '{print $1}' "$rir_source/meta.txt" | sort >"$rirs/real_all/ids"
   local/subset_rir_set.sh --meta "$rir_source/meta.txt" "$rirs/real_all/ids" "$rir_source" "$rirs/real_all"
-  local/split_rirs.sh --seed "$seed" --sizes "$split_sizes" "$rirs/real_all/meta.txt" "$rirs/split"
+  local/split_rirs.sh --seed "$seed" --sizes "$split_sizes" --group-fields "$split_group_fields" "$rirs/real_all/meta.txt" "$rirs/split"
   # Each set's .done identifies its content (the audio behind unchanged paths can change, e.g. the
   # demo's stand-ins), so that the later stages redo what depends on it.
   for split in train dev test; do
@@ -439,6 +452,20 @@ if [ $stage -le 5 ] && [ $stop_stage -ge 5 ]; then
   # extension of each detected one per room (decided on half of the RIRs, judged on the other half);
   # rir-simulate then renders every set-up of the train and test splits with its room's extended
   # model. The set differs from GAS only by what the diagnosis found.
+  # Positive controls for stage 8 (ctl_* among the proxy's training sets): the real training RIRs
+  # with one known mismatch each (rir-perturb; docs/results/downstream.md).
+  for set in ${asr_train_sets:-$train_sets}; do
+    case $set in ctl_t60x*) opt="--t60-scale=${set#ctl_t60x}" ;; ctl_drr*) opt="--drr-offset-db=${set#ctl_drr}" ;;
+                 ctl_lf*) opt="--lf-ringing-db=${set#ctl_lf}" ;; *) continue ;; esac
+    need_program rir-perturb
+    out=$rirs/${set}_train
+    sig="$opt seed=$seed $(content_of "$rirs/real_train/.done" | md5sum)"
+    if is_done "$out/.done" "$sig"; then continue; fi
+    run_logged "$exp/log/make_${set}_train.log" rir-perturb $opt --seed="$seed" --num-threads="$num_threads" \
+      "$rirs/real_train/rir_list" "$out"
+    mark_done "$out/.done" "$sig"
+    log "stage 5:   $(set_label "$set") (train): $(tail -n 1 "$exp/log/make_${set}_train.log" | sed 's/^rir-perturb: perturbed //; s/ into .*//')"
+  done
   if [[ " $rir_sets $train_sets " == *" gas_ext "* ]]; then
     need_program rir-diagnose rir-simulate
     require "$rirs/gas_all/room_list" "$rirs/real_train/rir_list"
@@ -608,9 +635,9 @@ if [ $stage -le 8 ] && [ $stop_stage -ge 8 ]; then
       begin_stage 8 "proxy recogniser (asr-train/asr-decode) per training set and seed ($asr_seeds), Table 2"
       need_program asr-train asr-decode reverberate-data
       # The real-speech test set reads ../shared/data/speech in place (skipped when absent).
-      proxy_opts=(--train-sets "$train_sets" --seeds "$asr_seeds" --snrs "$snrs" --num-threads "$asr_num_threads"
+      proxy_opts=(--train-sets "${asr_train_sets:-$train_sets}" --seeds "$asr_seeds" --snrs "$snrs" --num-threads "$asr_num_threads"
                   --jobs "$asr_jobs" --nj "$nj" --train-config "$(readlink -f "$asr_train_config")"
-                  --real-speech "$shared_data/speech")
+                  --train-copies "$asr_train_copies" --dose "$asr_dose" --real-speech "$shared_data/speech")
       [ -n "$asr_corpus_opts" ] && proxy_opts+=(--corpus-opts "$asr_corpus_opts")
       [ -n "$asr_train_opts" ] && proxy_opts+=(--train-opts "$asr_train_opts")
       table2=$(local/asr/run_proxy.sh "${proxy_opts[@]}" "$rirs" "$data/noise/noise_list" "$data" "$exp") ||

@@ -39,6 +39,7 @@ struct AsrTrainOptions {
   Seed seed = 0;
   int num_threads = 1;
   int batch_size = 16;          // utterances per step (batches are made of similar lengths)
+  bool sample_copies = false;   // one reverberant copy per source utterance (utt2uniq) per epoch
   double learning_rate = 1e-3;  // Adam
   double grad_clip = 5.0;       // gradient norm clip
   int time_masks = 2;           // SpecAugment: masks per utterance ...

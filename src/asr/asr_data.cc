@@ -25,6 +25,8 @@ std::vector<AsrUtterance> load_asr_utterances(const std::string& dir, const LogM
   parallel_for(ids.size(), num_threads, [&](size_t i) {
     AsrUtterance& u = utts[i];
     u.id = ids[i];
+    const auto uniq = data.utt2uniq.find(u.id);
+    u.source = uniq != data.utt2uniq.end() ? uniq->second : u.id;
     if (!data.text.empty()) {
       auto it = data.text.find(u.id);
       if (it == data.text.end()) throw Error(dir + "/text: no transcript for utterance " + u.id);

@@ -10,6 +10,7 @@ namespace tsrir {
 struct AsrUtterance {
   std::string id;
   std::string text;             // normalised (asr_text.h); empty when the dir has no text
+  std::string source;           // the source utterance (utt2uniq; = id without one)
   FeatureMatrix features;       // log-mel, per-utterance mean/variance normalised
 };
 

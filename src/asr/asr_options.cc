@@ -49,6 +49,9 @@ void AsrTrainOptions::Register(OptionsItf* opts) {
   opts->RegisterAlias("random-seed", "seed");
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
   opts->Register("batch-size", &batch_size, "Utterances per step (batches group similar lengths)");
+  opts->Register("sample-copies", &sample_copies,
+                 "Each epoch trains on one copy per source utterance (the data dir's utt2uniq, as "
+                 "reverberate-data --num-replications writes it), drawn from the seed and epoch");
   opts->Register("learning-rate", &learning_rate, "Adam learning rate");
   opts->Register("grad-clip", &grad_clip, "Gradient norm clip");
   model.Register(opts);

@@ -48,6 +48,8 @@ AsrSettings asr_settings_of(const AsrTrainOptions& o) {
   s["dropout"] = num(o.model.dropout);
   s["seed"] = std::to_string(o.seed);
   s["batch-size"] = std::to_string(o.batch_size);
+  // Written only when on, so that models trained before the option keep their settings.
+  if (o.sample_copies) s["sample-copies"] = "true";
   s["learning-rate"] = num(o.learning_rate);
   s["grad-clip"] = num(o.grad_clip);
   s["time-masks"] = std::to_string(o.time_masks);

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "asr/asr.h"
+#include "asr/asr_batches.h"
 #include "asr/asr_data.h"
 #include "asr/asr_settings.h"
 #include "gan/gan_runtime.h"
@@ -135,28 +136,6 @@ torch::Tensor make_batch(const std::vector<const AsrUtterance*>& utts, torch::Te
     }
   }
   return x;
-}
-
-// Utterance indices grouped by length into batches (sorted by frames, then id).
-std::vector<std::vector<size_t>> length_batches(const std::vector<AsrUtterance>& utts, int batch_size) {
-  std::vector<size_t> order(utts.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return utts[a].features.num_frames < utts[b].features.num_frames;
-  });
-  std::vector<std::vector<size_t>> batches;
-  for (size_t i = 0; i < order.size(); i += size_t(batch_size)) {
-    batches.emplace_back(order.begin() + i, order.begin() + std::min(order.size(), i + size_t(batch_size)));
-  }
-  return batches;
-}
-
-std::vector<size_t> epoch_order(uint64_t seed, int epoch, size_t n) {
-  std::vector<size_t> p(n);
-  for (size_t i = 0; i < n; ++i) p[i] = i;
-  Rng rng = Rng::for_item(seed, "batches/epoch/" + std::to_string(epoch));
-  for (size_t i = n; i > 1; --i) std::swap(p[i - 1], p[rng.below(i)]);
-  return p;
 }
 
 struct Progress {
@@ -331,7 +310,11 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
            rnn_type_name(o.model.rnn_type) + " x " + std::to_string(o.model.rnn_hidden) + "), " + std::to_string(o.num_threads) +
            " thread(s)");
 
-  const auto batches = length_batches(utts, o.batch_size);
+  const EpochBatcher batcher(utts, o.batch_size, o.seed, o.sample_copies);
+  if (o.sample_copies) {
+    log_info("one copy per source utterance per epoch: " + std::to_string(batcher.num_groups()) + " sources, " +
+             std::to_string(utts.size()) + " copies (utt2uniq)");
+  }
   const auto start = Clock::now();
   auto last_progress = start;
   StopRequestGuard stop;
@@ -342,7 +325,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
   namespace F = torch::nn::functional;
   model->train();
   while (p.epoch < o.epochs) {
-    const std::vector<size_t> order = epoch_order(o.seed, p.epoch, batches.size());
+    const std::vector<std::vector<size_t>> batches = batcher.epoch_batches(p.epoch);
     while (p.batch < (long long)batches.size()) {
       if (stop.stop_requested() || (o.max_minutes > 0 && seconds_since(start) > 60.0 * o.max_minutes)) {
         (stop.stop_requested() ? result.interrupted : result.out_of_time) = true;
@@ -357,7 +340,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
         return result;
       }
       const auto step_start = Clock::now();
-      const auto& members = batches[order[size_t(p.batch)]];
+      const auto& members = batches[size_t(p.batch)];
       std::vector<const AsrUtterance*> batch_utts;
       std::vector<int64_t> flat_targets, target_lengths;
       for (size_t i : members) {
@@ -394,11 +377,11 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
       if (seconds_since(last_progress) >= o.progress_interval_s) {
         last_progress = Clock::now();
         log_info("epoch " + std::to_string(p.epoch + 1) + "/" + std::to_string(o.epochs) + " batch " +
-                 std::to_string(p.batch) + "/" + std::to_string(batches.size()) + " loss " + format_double(value, 4) +
+                 std::to_string(p.batch) + "/" + std::to_string(batcher.batches_per_epoch()) + " loss " + format_double(value, 4) +
                  " (" + format_double(seconds_since(start), 4) + " s)");
       }
     }
-    p.last_epoch_loss = p.epoch_loss_sum / double(batches.size());
+    p.last_epoch_loss = p.epoch_loss_sum / double(batcher.batches_per_epoch());
     ++p.epoch;
     p.batch = 0;
     p.epoch_loss_sum = 0.0;

@@ -21,12 +21,10 @@
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/../.." && pwd)
-: "${TSRIR_BIN:?TSRIR_BIN must name the directory of the built programs}"
-export PATH=$TSRIR_BIN:$PATH LC_ALL=C
-command -v espeak-ng >/dev/null || { echo "SKIP: espeak-ng is not installed (utils/bootstrap.sh installs it)"; exit 77; }
-for p in asr-train asr-decode reverberate-data; do
-  [ -x "$TSRIR_BIN/$p" ] || { echo "FAIL: $TSRIR_BIN/$p is not built" >&2; exit 1; }
-done
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+. "$here/asr_test_lib.sh"
+require_programs asr-train asr-decode reverberate-data
 MARGIN_PCT=${MARGIN_PCT:-25}
 N_TRAIN=${N_TRAIN:-160}
 N_TEST=${N_TEST:-48}
@@ -34,33 +32,12 @@ TRAIN_OPTS=${TRAIN_OPTS:-"--epochs=12 --conv-layers=1 --conv-channels=48 --rnn-l
 control=${ASR_SENSITIVITY_CONTROL:-0}
 read -r seed1 seed2 <<<"${ASR_SENSITIVITY_SEEDS:-1 2}"   # other seeds: for measuring the margin
 shared=${TSRIR_SHARED_DATA:-$repo/../shared/data}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 start=$SECONDS
 
 "$here/make_digit_corpus.sh" "$tmp/c" 7 "$N_TRAIN" "$N_TEST" || { echo "FAIL: make_digit_corpus.sh" >&2; exit 1; }
 
-r3v=$shared/rirs/r3vival
-if ls "$r3v"/RLRVarAcLab_Absorptive_000_*_ch7.wav >/dev/null 2>&1; then
-  # Every third source position (sorted by name) is a held-out test RIR.
-  ls "$r3v"/RLRVarAcLab_Absorptive_000_*_ch7.wav | sort |
-    awk -v d="$tmp" '{ id = $0; sub(/.*Absorptive_/, "", id); sub(/_R1_.*/, "", id)
-      print "--rir-id " id " --room-id r3vival-000 " $0 > (d "/" (NR % 3 == 0 ? "test" : "train") "_rir_list") }'
-  echo "RIRs: measured R3VIVAL condition 000 from $r3v: $(wc -l <"$tmp/train_rir_list") training, $(wc -l <"$tmp/test_rir_list") held-out test positions"
-else
-  : "${TSRIR_TEST_RIRS:?TSRIR_TEST_RIRS must name the make_test_rirs helper}"
-  "$TSRIR_TEST_RIRS" "$tmp/rirs_train" 24 11 && "$TSRIR_TEST_RIRS" "$tmp/rirs_test" 12 12 ||
-    { echo "FAIL: make_test_rirs" >&2; exit 1; }
-  cp "$tmp/rirs_train/rir_list" "$tmp/train_rir_list"; cp "$tmp/rirs_test/rir_list" "$tmp/test_rir_list"
-  echo "RIRs: $r3v absent: 24 training and 12 test RIRs of random rooms from the independent generator (make_test_rirs)"
-fi
+split_test_rirs 000 "$shared"
 
-reverb() {  # <rir-list> <in> <out>: every utterance convolved with a random RIR of the list, no noise
-  reverberate-data --rir-set-parameters "1.0, $1" --speech-rvb-probability 1 \
-    --pointsource-noise-addition-probability 0 --isotropic-noise-addition-probability 0 --random-seed 3 \
-    --num-threads 2 --write-wavs "$tmp/wav/$(basename "$3")" "$2" "$3" 2>"$tmp/rvb.log" ||
-    { tail "$tmp/rvb.log" >&2; echo "FAIL: reverberate-data $2" >&2; exit 1; }
-}
 reverb "$tmp/train_rir_list" "$tmp/c/train" "$tmp/c/train_rvb"
 reverb "$tmp/test_rir_list" "$tmp/c/test" "$tmp/c/test_rvb"
 

@@ -69,6 +69,22 @@ head -n 170 "$tmp/meta1209" >"$tmp/meta170"
 local/split_rirs.sh "$tmp/meta170" "$tmp/split170" 2>/dev/null
 # 170 * 194/1209 = 27.3 -> 27; 170 * 242/1209 = 34.03 -> 34; train = the rest.
 check "split: other counts are scaled (170 -> 109/27/34)" grep -q 'train=109 dev=27 test=34' "$tmp/split170/split.txt"
+# Grouped by source position: 34 positions x 5 conditions (room ids differ per condition, as the
+# demo's R3VIVAL table has them); no position may have RIRs in two splits.
+for c in 000 025 050 075 100; do for p in $(seq 1 34); do
+  echo "r$c-p$p room-$c 9.7 5.5 2.7 $p.0 2.0 1.4 6.2 2.75 1.35"; done; done >"$tmp/meta_pos"
+local/split_rirs.sh --group-fields "3 4 5 6 7 8" "$tmp/meta_pos" "$tmp/split_pos" 2>/dev/null
+pos_of() { sed 's/^r[0-9]*-//' "$tmp/split_pos/$1.ids" | sort -u; }
+check "split: grouped, no source position in two splits" \
+  test "$(cat <(pos_of train) <(pos_of dev) <(pos_of test) | sort | uniq -d | wc -l)" -eq 0
+check "split: grouped, every RIR in one split, whole positions (multiples of 5)" \
+  bash -c "test \$(cat '$tmp'/split_pos/{train,dev,test}.ids | sort -u | wc -l) -eq 170 &&
+           for f in train dev test; do test \$(( \$(wc -l <'$tmp'/split_pos/\$f.ids) % 5 )) -eq 0 || exit 1; done"
+check "split: grouped sizes near 109/27/34 and recorded" grep -q 'train=110 dev=30 test=30 .* groups=fields 3 4 5 6 7 8' "$tmp/split_pos/split.txt"
+local/split_rirs.sh "$tmp/meta_pos" "$tmp/split_ungrouped" 2>/dev/null
+check "split: without --group-fields positions are split apart (what the grouping prevents)" \
+  test "$(cat <(sed 's/^r[0-9]*-//' "$tmp/split_ungrouped/train.ids" | sort -u) <(sed 's/^r[0-9]*-//' "$tmp/split_ungrouped/test.ids" | sort -u) | sort | uniq -d | wc -l)" -gt 0
+expect_fail "split: a group field that is not a number is an error" local/split_rirs.sh --group-fields "x" "$tmp/meta_pos" "$tmp/split_bad"
 printf 'a r 1 1 1 .1 .1 .1 .2 .2 .2\na r 1 1 1 .1 .1 .1 .2 .2 .2\nb r 1 1 1 .1 .1 .1 .2 .2 .2\n' >"$tmp/dup"
 expect_fail "split: duplicate RIR ids are an error" local/split_rirs.sh "$tmp/dup" "$tmp/split_dup"
 
@@ -185,37 +201,46 @@ check "collect_wer: best WER per decode, paper's row names and order" \
 check "collect_wer: missing decodes are counted" bash -c "echo '$table' | grep -q '(9 decode(s) missing'"
 expect_fail "collect_wer: no WER at all is an error" local/collect_wer.sh --sets clean "$k"
 
-# ---- asr/table2.sh: the proxy's Table 2 from fabricated per-utterance errors ----
-# 10 utterances of 20 characters and 5 words. Test A: clean 10 character errors each (50 %),
-# real 5 (seed 0) and 3 (seed 1) -> 25 % and 15 %, mean 20, sd 7.07; GAS 6 (30 %). Test B: every set
-# 8 errors (40 %). Real vs GAS: all 10 utterances one way, exact two-sided p = 2 / 2^10 = 0.00195.
+# ---- asr/table2.py: the proxy's Table 2 at the level of training runs, from fabricated decodes ----
+# 10 utterances of 20 characters and 5 words per run; each run's CER = its errors / 200. Test A, five
+# runs per set: GAS 60 61 59 60 60 errors (30.0 30.5 29.5 30.0 30.0 %), real 40 44 36 42 38 (20 22 18
+# 21 19 %), clean 100 each (50 %), ctl 50 52 48 51 49 (25 26 24 25.5 24.5 %). By hand: real vs GAS
+# -10 points, Welch t = -10 / sqrt(2.5/5 + 0.125/5) = -13.80 on 4.8 df: p < 0.0001; the runs
+# separate completely, so the exact permutation test over run labels gives 2/252 = 0.0079.
+# Hedges' g = -10 / sqrt((2.5 + 0.125)/2) * (1 - 3/(4*10 - 9)) = -7.884.
 e=$tmp/asr_exp
-mkerr() {  # <set> <seed> <test> <char-errors> <word-errors>
-  local d=$e/${1}_seed$2/decode_$3 u
+mkrun() {  # <set> <seed> <test> <char-errors of the run, spread over 10 utterances>
+  local d=$e/${1}_seed$2/decode_$3 u q=$(( $4 / 10 )) r=$(( $4 % 10 ))
   mkdir -p "$d"
   { echo "# utt ref_words word_errors ins del sub ref_chars char_errors ins del sub"
-    for u in 01 02 03 04 05 06 07 08 09 10; do echo "u$u 5 $5 0 0 $5 20 $4 0 0 $4"; done; } >"$d/utt_errors"
+    for u in 0 1 2 3 4 5 6 7 8 9; do c=$(( q + (u < r ? 1 : 0) )); echo "u$u 5 2 0 0 2 20 $c 0 0 $c"; done; } >"$d/utt_errors"
 }
-for k in 0 1; do
-  mkerr clean $k A 10 5; mkerr gas $k A 6 3; mkerr real $k A $((k == 0 ? 5 : 3)) 2
-  for s in clean gas real; do mkerr $s $k B 8 2; done
-done
-t2=$(local/asr/table2.sh --sets "clean real gas" --seeds "0 1" --tests "A B" --titles "test A|test B" "$e" 2>&1)
+k=0; for v in 60 61 59 60 60; do mkrun gas $k A $v; k=$((k + 1)); done
+k=0; for v in 40 44 36 42 38; do mkrun real $k A $v; k=$((k + 1)); done
+k=0; for v in 50 52 48 51 49; do mkrun ctl_t60x0.33 $k A $v; k=$((k + 1)); done
+for k in 0 1 2 3 4; do mkrun clean $k A 100; done
+t2=$(python3 local/asr/table2.py --sets "clean real gas ctl_t60x0.33" --seeds "0 1 2 3 4" --tests A --titles "test A" \
+     --dose "real ctl_t60x0.33" "$e" 2>&1)
 row() { echo "$t2" | grep "^| $1 |"; }
-check "table2: header with a column group per test" \
-  test "$(echo "$t2" | head -1)" = "| training RIR set | CER % (test A) | WER % | CER vs GAS | p (paired, 10 utts) | CER % (test B) | WER % | CER vs GAS | p (paired, 10 utts) |"
-check "table2: clean: mean CER/WER over seeds, +66.7 % vs GAS (50 vs 30 %), p < 0.005" \
-  bash -c "echo '$(row 'clean (no RIR)')' | awk -F'|' '\$3 == \" 50.00 ± 0.00 \" && \$4 == \" 100.00 ± 0.00 \" && \$5 == \" +66.7 % \" && \$6 + 0 < 0.005 && \$6 + 0 > 0.001 {ok = 1} END {exit !ok}'"
-check "table2: real: 20.00 ± 7.07 % CER, 40 % WER, -33.3 % vs GAS" \
-  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$3 == \" 20.00 ± 7.07 \" && \$4 == \" 40.00 ± 0.00 \" && \$5 == \" -33.3 % \" {ok = 1} END {exit !ok}'"
-check "table2: test B: equal errors -> +0.0 % and p = 1" \
-  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$7 == \" 40.00 ± 0.00 \" && \$9 == \" +0.0 % \" && \$10 == \" 1.0000 \" {ok = 1} END {exit !ok}'"
-check "table2: the GAS row has no comparison" bash -c "echo '$(row GAS)' | grep -q '| — | — |'"
-check "table2: sensitivity PASS on test A (60 % reduction), FAIL on test B (0 %)" \
-  bash -c "echo \"\$1\" | grep -q 'Sensitivity (test A): real (oracle) vs clean: CER 20.00 vs 50.00 %, 60.0 % relative reduction, paired p = 0.00[0-9]* (PASS' &&
-           echo \"\$1\" | grep -q 'Sensitivity (test B): .* 0.0 % relative reduction, paired p = 1.0000 (FAIL'" _ "$t2"
-rm "$e/gas_seed1/decode_B/utt_errors"
-expect_fail "table2: a missing decode is an error" local/asr/table2.sh --sets "clean real gas" --seeds "0 1" --tests "A B" "$e"
+check "table2.py: real: mean 20.00 with its 95 % t interval (t(0.975, 4) * 1.5811 / sqrt 5 = 1.96)" \
+  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$3 == \" 20.00 ± 1.96 \" {ok = 1} END {exit !ok}'"
+check "table2.py: real vs GAS: -10.00 points, -33.3 %, g -7.88, Welch p < 0.0001, permutation 0.0079" \
+  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$5 ~ /^ -10.00 / && \$6 == \" -33.3 % \" && \$7 == \" -7.88 \" && \$8 == \" < 0.0001 \" && \$9 == \" 0.0079 \" {ok = 1} END {exit !ok}'"
+check "table2.py: the GAS row has no comparison" bash -c "echo '$(row GAS)' | grep -q '| — | — | — | — | — |'"
+# The control's runs (24-26 %) all lie above the real runs (18-22 %): of the 252 splits of the ten
+# runs only the observed one puts all five highest on the control's side, so the exact one-sided
+# Mann-Whitney p is 1/252 = 0.0040.
+check "table2.py: the control is labelled and its dose check passes (25.0 > 20.0, Mann-Whitney p = 1/252)" \
+  bash -c "echo \"\$1\" | grep -q 'control: real, T60 x0.33 | 25.00' &&
+           echo \"\$1\" | grep -q 'Dose-response (real -> ctl_t60x0.33).*Mann-Whitney p over runs = 0.0040 .*PASS'" _ "$t2"
+check "table2.py: the resolution line is printed" bash -c "echo \"\$1\" | grep -q '^Resolution: run-level SD'" _ "$t2"
+check "table2.py: Student's t tail agrees with tables (P(T > 2.0 | 10 df) = 0.03669)" \
+  python3 -c "import sys; sys.path.insert(0, 'local/asr'); import table2; sys.exit(abs(table2.t_sf(2.0, 10) - 0.036694) > 2e-6)"
+# A dose chain that does not rise fails, and --require-dose turns that into exit status 3.
+python3 local/asr/table2.py --sets "real gas" --seeds "0 1 2 3 4" --tests A --dose "gas real" --require-dose "$e" >/dev/null 2>&1
+check "table2.py: a falling dose chain fails with exit status 3 under --require-dose" test $? -eq 3
+rm "$e/gas_seed1/decode_A/utt_errors"
+expect_fail "table2.py: a missing decode is an error" python3 local/asr/table2.py --sets "real gas" --seeds "0 1" --tests A "$e"
 
 # ---- asr/make_real_speech_dir.sh: the real-speech test set from a speech tree like ../shared/data/speech ----
 rs=$tmp/speech

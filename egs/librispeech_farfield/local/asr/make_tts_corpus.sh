@@ -14,8 +14,10 @@
 #   --min-words N (4)  --max-words N (9)  --books "Gen1:1-50:26 ..."  --seed N (0)  --nj N (2)
 # e.g.: local/asr/make_tts_corpus.sh --utts-per-train-voice 50 data/asr/tts
 set -euo pipefail
-train_voices="espeak:en-us+m3 espeak:en-gb+f2 espeak:en-us+m1 espeak:en+f4 espeak:en-gb-scotland+m2 espeak:en-029+m4 espeak:en-gb-x-rp+f3 espeak:en-us-nyc+m6"
-test_voices="espeak:en-us+f1 espeak:en-gb+m7 espeak:en-gb-x-gbclan+f5"
+# 24 training voices: every English dialect voice of espeak-ng with two or three of the variants
+# m1-m4, m6, f2-f4; the 6 test voices use variants never heard in training (m5, m7, f1, f5).
+train_voices="espeak:en-us+m1 espeak:en-us+m3 espeak:en-us+f2 espeak:en-us+f4 espeak:en-gb+m2 espeak:en-gb+m4 espeak:en-gb+f3 espeak:en-gb+m6 espeak:en+m1 espeak:en+f2 espeak:en+m3 espeak:en+f4 espeak:en-gb-scotland+m2 espeak:en-gb-scotland+f3 espeak:en-029+m4 espeak:en-029+f2 espeak:en-gb-x-rp+m6 espeak:en-gb-x-rp+f4 espeak:en-us-nyc+m1 espeak:en-us-nyc+f3 espeak:en-gb-x-gbclan+m3 espeak:en-gb-x-gbclan+f2 espeak:en-gb-x-gbcwmd+m4 espeak:en-gb-x-gbcwmd+f4"
+test_voices="espeak:en-us+f1 espeak:en-gb+m7 espeak:en-gb-x-gbclan+f5 espeak:en+m5 espeak:en-029+f1 espeak:en-gb-scotland+m7"
 utts_per_train_voice=50
 utts_per_test_voice=40
 vocab_size=500
