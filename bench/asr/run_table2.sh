@@ -96,7 +96,8 @@ make_control() {  # <set>
 # ---- 3. trained translators and their G sets ----
 train_translator() {  # <name> <extra options>
   local name=$1 extra=$2 dir=$out/gan/$1 sig
-  sig="$extra steps=$gan_steps $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
+  # The program's --help lists its defaults: a new default translator is trained anew.
+  sig="$extra steps=$gan_steps $(ts-rirgan-train --help 2>&1 | md5sum) $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
   done_with "$dir.done" "$sig" && return 0
   local resume=()
   [ -f "$dir/checkpoint.pt" ] && done_with "$dir.sig" "$sig" && resume=(--resume)
@@ -108,31 +109,48 @@ train_translator() {  # <name> <extra options>
     2>"$out/log/gan_$name.log" || { tail "$out/log/gan_$name.log" >&2; die "ts-rirgan-train ($name) failed"; }
   mark "$dir.done" "$sig"
 }
+# A set made anew: the far-field data and models made from its old content go (run_proxy.sh's
+# markers follow the list's paths, which stay the same), so that every arm trains on the new one.
+forget_set() {  # <set>
+  local m
+  for m in "$out"/*/exp/asr/markers/train_"$1".data; do [ -e "$m" ] && rm -f "$m"; done
+  return 0
+}
+make_g_set() {  # <set> <sig> <command...>
+  local set=$1 sig=$2
+  shift 2
+  done_with "$rirs/${set}_train/.done" "$sig" && return 0
+  "$@" 2>>"$out/log/$set.log" || { tail "$out/log/$set.log" >&2; die "making $set failed"; }
+  forget_set "$set"
+  mark "$rirs/${set}_train/.done" "$sig"
+}
 make_g_sets() {  # <suffix> <model-dir>: gas_gsr<suffix>, gas_eq_gsr<suffix>, gas_gsr<suffix>_eq
   local x=$1 model=$2 sig
   sig="$(cat "$model.done" 2>/dev/null || echo demo) $(md5sum <"$demo_rirs/gas_train/rir_list")"
-  if ! done_with "$rirs/gas_gsr${x}_train/.done" "$sig"; then
-    gas-to-real --model="$model" --format=int16 --num-threads=2 --overwrite "$demo_rirs/gas_train/rir_list" "$rirs/gas_gsr${x}_train" 2>>"$out/log/g$x.log"
-    mark "$rirs/gas_gsr${x}_train/.done" "$sig"
-  fi
-  if ! done_with "$rirs/gas_eq_gsr${x}_train/.done" "$sig"; then
-    gas-to-real --model="$model" --format=int16 --num-threads=2 --overwrite "$demo_rirs/gas_eq_train/rir_list" "$rirs/gas_eq_gsr${x}_train" 2>>"$out/log/g$x.log"
-    mark "$rirs/gas_eq_gsr${x}_train/.done" "$sig"
-  fi
-  if ! done_with "$rirs/gas_gsr${x}_eq_train/.done" "$sig"; then
-    rir-eq apply --config="$root/conf/rir-eq-apply.conf" --seed=0 --num-threads=2 --overwrite "$recipe/demo/exp/eq/eq.model" \
-      "$rirs/gas_gsr${x}_train/rir_list" "$rirs/gas_gsr${x}_eq_train" 2>>"$out/log/g$x.log"
-    mark "$rirs/gas_gsr${x}_eq_train/.done" "$sig"
-  fi
+  make_g_set "gas_gsr$x" "$sig" gas-to-real --model="$model" --format=int16 --num-threads=2 --overwrite \
+    "$demo_rirs/gas_train/rir_list" "$rirs/gas_gsr${x}_train"
+  make_g_set "gas_eq_gsr$x" "$sig" gas-to-real --model="$model" --format=int16 --num-threads=2 --overwrite \
+    "$demo_rirs/gas_eq_train/rir_list" "$rirs/gas_eq_gsr${x}_train"
+  make_g_set "gas_gsr${x}_eq" "$sig" rir-eq apply --config="$root/conf/rir-eq-apply.conf" --seed=0 --num-threads=2 --overwrite \
+    "$recipe/demo/exp/eq/eq.model" "$rirs/gas_gsr${x}_train/rir_list" "$rirs/gas_gsr${x}_eq_train"
 }
 
 prepare_rirs() {
   mkdir -p "$rirs" "$out/log"
   prepare_demo
-  for s in real gas gas_eq gas_ext; do ln -sfn "$demo_rirs/${s}_train" "$rirs/${s}_train"; done
-  ln -sfn "$demo_rirs/real_test" "$rirs/real_test"
-  # The demo's small translator (width 8, 300 steps), kept as a labelled row.
-  ln -sfn "$demo_rirs/gas_gsr_train" "$rirs/gas_gsrt_train"
+  # The demo's sets, linked; the demo's small translator (width 8, 300 steps) is kept as a labelled
+  # row. When the demo made one anew (its .done changed), what was trained on the old one goes.
+  local pair s from
+  for pair in real:real gas:gas gas_eq:gas_eq gas_ext:gas_ext gas_gsrt:gas_gsr real_test:real_test; do
+    s=${pair%%:*}; from=$demo_rirs/${pair#*:}
+    if [ "$s" = real_test ]; then ln -sfn "$from" "$rirs/real_test"; else from+=_train; ln -sfn "$from" "$rirs/${s}_train"; fi
+    done_with "$rirs/$s.source" "$(cat "$from/.done")" && continue
+    if [ -f "$rirs/$s.source" ]; then
+      # Other test RIRs: every far-field set and model of every arm is made anew.
+      if [ "$s" = real_test ]; then rm -f "$out"/*/exp/asr/markers/*; else forget_set "$s"; fi
+    fi
+    mark "$rirs/$s.source" "$(cat "$from/.done")"
+  done
   for s in $sets; do case $s in ctl_*) make_control "$s" ;; esac; done
   if [[ " $sets " == *" gas_gsr "* || " $sets " == *" gas_eq_gsr "* || " $sets " == *" gas_gsr_eq "* ]]; then
     train_translator default ""
