@@ -33,11 +33,11 @@ split_test_rirs() {
   fi
 }
 
-# reverb <rir-list> <in-data-dir> <out-data-dir>: every utterance convolved with a random RIR of
-# the list, no noise (reverberate-data, seeded).
+# reverb <rir-list> <in-data-dir> <out-data-dir> [seed]: every utterance convolved with a random RIR
+# of the list, no noise (reverberate-data, seeded: 3 unless given).
 reverb() {
   reverberate-data --rir-set-parameters "1.0, $1" --speech-rvb-probability 1 \
-    --pointsource-noise-addition-probability 0 --isotropic-noise-addition-probability 0 --random-seed 3 \
+    --pointsource-noise-addition-probability 0 --isotropic-noise-addition-probability 0 --random-seed "${4:-3}" \
     --num-threads 2 --write-wavs "$tmp/wav/$(basename "$3")" "$2" "$3" 2>"$tmp/rvb.log" ||
     { tail "$tmp/rvb.log" >&2; echo "FAIL: reverberate-data $2" >&2; exit 1; }
 }

@@ -203,11 +203,11 @@ expect_fail "collect_wer: no WER at all is an error" local/collect_wer.sh --sets
 
 # ---- asr/table2.py: the proxy's Table 2 at the level of training runs, from fabricated decodes ----
 # 10 utterances of 20 characters and 5 words per run; each run's CER = its errors / 200. Test A, five
-# runs per set: GAS 60 61 59 60 60 errors (30.0 30.5 29.5 30.0 30.0 %), real 40 44 36 42 38 (20 22 18
-# 21 19 %), clean 100 each (50 %), ctl 50 52 48 51 49 (25 26 24 25.5 24.5 %). By hand: real vs GAS
-# -10 points, Welch t = -10 / sqrt(2.5/5 + 0.125/5) = -13.80 on 4.8 df: p < 0.0001; the runs
-# separate completely, so the exact permutation test over run labels gives 2/252 = 0.0079.
-# Hedges' g = -10 / sqrt((2.5 + 0.125)/2) * (1 - 3/(4*10 - 9)) = -7.884.
+# runs (seeds) per set: GAS 60 61 59 60 60 errors (30.0 30.5 29.5 30.0 30.0 %), real 40 44 36 42 38
+# (20 22 18 21 19 %), clean 100 each (50 %), ctl 50 52 48 51 49 (25 26 24 25.5 24.5 %). By hand:
+# real - GAS per seed -10 -8.5 -11.5 -9 -11: mean -10, SD 1.2748, paired t = -17.5 on 4 df
+# (p < 0.0001), 95 % CI -10 +- 2.7764 * 1.2748 / sqrt 5 = -11.58 .. -8.42, d_z = -7.84; ctl - real
+# per seed 5 4 6 4.5 5.5: mean 5, SD 0.7906, CI +4.02 .. +5.98, one-sided p < 0.0001.
 e=$tmp/asr_exp
 mkrun() {  # <set> <seed> <test> <char-errors of the run, spread over 10 utterances>
   local d=$e/${1}_seed$2/decode_$3 u q=$(( $4 / 10 )) r=$(( $4 % 10 ))
@@ -224,16 +224,13 @@ t2=$(python3 local/asr/table2.py --sets "clean real gas ctl_t60x0.33" --seeds "0
 row() { echo "$t2" | grep "^| $1 |"; }
 check "table2.py: real: mean 20.00 with its 95 % t interval (t(0.975, 4) * 1.5811 / sqrt 5 = 1.96)" \
   bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$3 == \" 20.00 ± 1.96 \" {ok = 1} END {exit !ok}'"
-check "table2.py: real vs GAS: -10.00 points, -33.3 %, g -7.88, Welch p < 0.0001, permutation 0.0079" \
-  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$5 ~ /^ -10.00 / && \$6 == \" -33.3 % \" && \$7 == \" -7.88 \" && \$8 == \" < 0.0001 \" && \$9 == \" 0.0079 \" {ok = 1} END {exit !ok}'"
+check "table2.py: real vs GAS paired by seed: -10.00 (-11.58 .. -8.42), -33.3 %, d_z -7.84, p < 0.0001" \
+  bash -c "echo '$(row 'real (oracle)')' | awk -F'|' '\$5 == \" -10.00 (-11.58 .. -8.42) \" && \$6 == \" -33.3 % \" && \$7 == \" -7.84 \" && \$8 == \" < 0.0001 \" {ok = 1} END {exit !ok}'"
 check "table2.py: the GAS row has no comparison" bash -c "echo '$(row GAS)' | grep -q '| — | — | — | — | — |'"
-# The control's runs (24-26 %) all lie above the real runs (18-22 %): of the 252 splits of the ten
-# runs only the observed one puts all five highest on the control's side, so the exact one-sided
-# Mann-Whitney p is 1/252 = 0.0040.
-check "table2.py: the control is labelled and its dose check passes (25.0 > 20.0, Mann-Whitney p = 1/252)" \
+check "table2.py: the control is labelled and its dose check passes (+5.00, CI +4.02 .. +5.98)" \
   bash -c "echo \"\$1\" | grep -q 'control: real, T60 x0.33 | 25.00' &&
-           echo \"\$1\" | grep -q 'Dose-response (real -> ctl_t60x0.33).*Mann-Whitney p over runs = 0.0040 .*PASS'" _ "$t2"
-check "table2.py: the resolution line is printed" bash -c "echo \"\$1\" | grep -q '^Resolution: run-level SD'" _ "$t2"
+           echo \"\$1\" | grep -q 'Dose-response (real -> ctl_t60x0.33).*+5.00 points paired by seed (95 % CI +4.02 .. +5.98), one-sided paired t p = < 0.0001.*PASS'" _ "$t2"
+check "table2.py: the resolution line is printed" bash -c "echo \"\$1\" | grep -q '^Resolution (two-sided alpha 0.05'" _ "$t2"
 check "table2.py: Student's t tail agrees with tables (P(T > 2.0 | 10 df) = 0.03669)" \
   python3 -c "import sys; sys.path.insert(0, 'local/asr'); import table2; sys.exit(abs(table2.t_sf(2.0, 10) - 0.036694) > 2e-6)"
 # A dose chain that does not rise fails, and --require-dose turns that into exit status 3.

@@ -3,23 +3,26 @@
 
 Reads asr-decode's outputs <exp>/<set>_seed<k>/decode_<test>/utt_errors and, per test set, prints
 one row per training RIR set: CER and WER (each run's corpus-level rate, then the mean over runs
-with a 95 % t interval), and against --baseline the CER difference with its 95 % Welch interval,
-the relative change, Hedges' g, a Welch t-test over runs and an exact permutation test over run
-labels (every assignment of the 2n runs to the two sets; two-sided).
+with a 95 % t interval), and against --baseline the CER difference paired by seed with its 95 %
+interval, the relative change, the paired effect size d_z (mean difference / SD of the per-seed
+differences), a paired t-test over seeds and, for reference, Welch's unpaired test over runs.
 
 Why runs and not utterances: every model decodes the same test utterances, so utterance effects
 cancel in a difference of run means, and what is left to judge a difference against is how much
-a whole training run moves (its seed, its batch order, its copy draws). In this balanced design
-(every run decodes every test utterance) the Welch test on run means is the test of the set
-effect in a mixed model with run and utterance effects; a test over utterances alone ignores the
-run-to-run variance and called a 1-LSB corpus change significant (docs/results/downstream.md).
+a whole training run moves; a test over utterances alone ignores that run-to-run variance and
+called a 1-LSB corpus change significant (docs/results/downstream.md).
+Why paired by seed: the runs of every set with seed k share their initial weights, batch order,
+SpecAugment masks and copy choices (common random numbers), and the far-field data of every set
+are drawn with one reverberate-data seed, so a run's seed effect (e.g. a slow start that leaves it
+several points behind) is shared by all sets and cancels in the per-seed difference. This is the
+test of the set effect in a mixed model with a random run (seed) effect and utterance effects
+(balanced: every run decodes every test utterance); with n seeds it has n - 1 degrees of freedom.
 
 Controls (--dose "real ctl1 ctl2 ..."): a chain of training sets of growing mismatch; the
-instrument is valid on a test set when the chain's CER rises at every step (means) and the last
-set is worse than the first at the run level with p < --alpha by an exact one-sided Mann-Whitney
-test over runs (rank-based: a single run that did not converge cannot decide it; with 5 runs a side
-the smallest p is 1/252 = 0.004, one swapped pair gives 0.008). Welch's p is printed beside it. --resolution prints the smallest CER difference the design can detect
-(two-sided alpha 0.05, power 0.8, n runs per set, the pooled run-level SD of all sets).
+instrument is valid on a test set when the chain's mean CER rises at every step and the last set
+is worse than the first by a one-sided paired t-test over seeds at p < --alpha (Welch printed
+beside it). --resolution prints the smallest CER difference the design can detect (two-sided
+alpha 0.05, power 0.8, n seeds, the pooled SD of the per-seed differences against the baseline).
 
 Usage: table2.py [--sets "..."] [--seeds "0 1 2 3 4"] [--baseline gas] [--tests "test_real"]
                  [--titles "TTS test voices"] [--dose "real t60x0.5 t60x0.33"] [--alpha 0.01]
@@ -27,7 +30,6 @@ Usage: table2.py [--sets "..."] [--seeds "0 1 2 3 4"] [--baseline gas] [--tests 
 Exit status 0; with --require-dose, 3 when a dose check fails (so CI can assert it).
 """
 import argparse
-import itertools
 import math
 import os
 import sys
@@ -140,42 +142,16 @@ def welch(a, b):
     return diff, t_quantile(0.975, df) * se, 2 * t_sf(abs(t), df), t_sf(t, df), df
 
 
-def hedges_g(a, b):
-    na, nb = len(a), len(b)
-    pooled = math.sqrt(((na - 1) * sd(a) ** 2 + (nb - 1) * sd(b) ** 2) / (na + nb - 2))
-    if pooled == 0:
-        return float("nan")
-    return (mean(a) - mean(b)) / pooled * (1 - 3 / (4 * (na + nb) - 9))
-
-
-def permutation_p(a, b):
-    """Exact two-sided permutation test of the difference of means over run labels."""
-    pooled = a + b
-    observed = abs(mean(a) - mean(b))
-    hits = total = 0
-    for chosen in itertools.combinations(range(len(pooled)), len(a)):
-        sa = [pooled[i] for i in chosen]
-        sb = [pooled[i] for i in range(len(pooled)) if i not in chosen]
-        total += 1
-        hits += abs(mean(sa) - mean(sb)) >= observed - 1e-12
-    return hits / total
-
-
-def rank_p_greater(a, b):
-    """Exact one-sided Mann-Whitney test that runs of a have higher CER than runs of b: the share of
-    all splits of the pooled runs whose U (pairs a' > b', ties half) is at least the observed one.
-    Rank-based, so one run that failed to converge cannot decide the verdict alone."""
-    def u(xs, ys):
-        return sum((x > y) + 0.5 * (x == y) for x in xs for y in ys)
-    pooled = a + b
-    observed = u(a, b)
-    hits = total = 0
-    for chosen in itertools.combinations(range(len(pooled)), len(a)):
-        sa = [pooled[i] for i in chosen]
-        sb = [pooled[i] for i in range(len(pooled)) if i not in chosen]
-        total += 1
-        hits += u(sa, sb) >= observed - 1e-12
-    return hits / total
+def paired(a, b):
+    """Per-seed differences a[k] - b[k]: (mean, 95 % half-width, two-sided p, one-sided p for a > b,
+    d_z = mean / SD of the differences)."""
+    d = [x - y for x, y in zip(a, b)]
+    n = len(d)
+    m, s = mean(d), sd(d)
+    if not s > 0:
+        return m, 0.0, (0.0 if m != 0 else 1.0), (0.0 if m > 0 else 1.0), float("nan")
+    t = m / (s / math.sqrt(n))
+    return m, t_quantile(0.975, n - 1) * s / math.sqrt(n), 2 * t_sf(abs(t), n - 1), t_sf(t, n - 1), m / s
 
 
 def fmt_p(p):
@@ -218,8 +194,8 @@ def label_of(s, extra):
 def table(runs, sets, base, labels, title):
     n = len(next(iter(runs.values()))[0])
     out = ["### %s" % title, "",
-           "| training RIR set | CER %% (mean of %d runs, 95 %% CI) | WER %% | CER vs %s (95 %% CI) | relative | Hedges' g "
-           "| p (Welch, runs) | p (permutation, runs) |" % (n, label_of(base, labels)),
+           "| training RIR set | CER %% (mean of %d runs, 95 %% CI) | WER %% | CER vs %s, paired by seed (95 %% CI) "
+           "| relative | d_z | p (paired t, seeds) | p (Welch, unpaired) |" % (n, label_of(base, labels)),
            "|---|---|---|---|---|---|---|---|"]
     bc = runs[base][0] if base in runs else None
     for s in sets:
@@ -228,9 +204,9 @@ def table(runs, sets, base, labels, title):
         if bc is None or s == base:
             row += " — | — | — | — | — |"
         else:
-            d, hw, p2, _, _ = welch(cer, bc)
+            d, hw, p2, _, dz = paired(cer, bc)
             row += " %+.2f (%+.2f .. %+.2f) | %+.1f %% | %+.2f | %s | %s |" % (
-                d, d - hw, d + hw, 100 * d / mean(bc), hedges_g(cer, bc), fmt_p(p2), fmt_p(permutation_p(cer, bc)))
+                d, d - hw, d + hw, 100 * d / mean(bc), dz, fmt_p(p2), fmt_p(welch(cer, bc)[2]))
         out.append(row)
     out.append("")
     out.append("Per-run CER (seeds in order): " + "; ".join(
@@ -240,30 +216,38 @@ def table(runs, sets, base, labels, title):
 
 def dose_check(runs, chain, alpha, labels):
     """Lines describing the dose-response chain, and whether it passes: the mean CER rises at every
-    step, and the last set's runs are worse than the first set's by an exact one-sided Mann-Whitney
-    test over runs at p < alpha (Welch printed beside it)."""
+    step, and the last set is worse than the first by a one-sided paired t-test over seeds at
+    p < alpha (Welch's unpaired p printed beside it)."""
     means = [mean(runs[s][0]) for s in chain]
     rising = all(b > a for a, b in zip(means, means[1:]))
     last, first = runs[chain[-1]][0], runs[chain[0]][0]
-    d, hw, _, p1, _ = welch(last, first)
-    rank = rank_p_greater(last, first)
-    ok = rising and rank < alpha
+    d, hw, _, p1, _ = paired(last, first)
+    ok = rising and p1 < alpha
     steps = " < ".join("%s %.2f" % (label_of(s, labels), m) for s, m in zip(chain, means))
-    return ok, ["Dose-response (%s): %s; CER rises at every step: %s; %s vs %s %+.2f points (95 %% CI %+.2f .. %+.2f), "
-                "one-sided Mann-Whitney p over runs = %s (Welch %s): **%s** (needs a rise at every step and p < %g)" % (
-                    " -> ".join(chain), steps, "yes" if rising else "NO", label_of(chain[-1], labels),
-                    label_of(chain[0], labels), d, d - hw, d + hw, fmt_p(rank), fmt_p(p1), "PASS" if ok else "FAIL", alpha)]
+    return ok, ["Dose-response (%s): %s; CER rises at every step: %s; %s vs %s %+.2f points paired by seed (95 %% CI "
+                "%+.2f .. %+.2f), one-sided paired t p = %s (Welch, unpaired: %s): **%s** (needs a rise at every step "
+                "and p < %g)" % (" -> ".join(chain), steps, "yes" if rising else "NO", label_of(chain[-1], labels),
+                                 label_of(chain[0], labels), d, d - hw, d + hw, fmt_p(p1), fmt_p(welch(last, first)[3]),
+                                 "PASS" if ok else "FAIL", alpha)]
 
 
-def resolution(runs):
-    """Smallest detectable CER difference: two-sided alpha 0.05, power 0.8, pooled run SD."""
-    sds = [sd(c) for c, _ in runs.values() if len(c) > 1]
+def resolution(runs, base):
+    """Smallest detectable CER difference (two-sided alpha 0.05, power 0.8): paired by seed, from
+    the pooled SD of every set's per-seed differences against the baseline; and unpaired, from the
+    pooled run-level SD."""
     n = len(next(iter(runs.values()))[0])
-    if not sds or n < 2:
+    if n < 2 or base not in runs:
         return None
-    pooled = math.sqrt(mean([s * s for s in sds]))
+    diffs = [[x - y for x, y in zip(c, runs[base][0])] for s, (c, _) in runs.items() if s != base]
+    if not diffs:
+        return None
+    sd_pair = math.sqrt(mean([sd(d) ** 2 for d in diffs]))
+    sd_run = math.sqrt(mean([sd(c) ** 2 for c, _ in runs.values()]))
+    k = len(diffs)
+    mde_pair = (t_quantile(0.975, k * (n - 1)) + t_quantile(0.8, k * (n - 1))) * sd_pair / math.sqrt(n)
     df = len(runs) * (n - 1)
-    return (t_quantile(0.975, df) + t_quantile(0.8, df)) * pooled * math.sqrt(2.0 / n), pooled
+    mde_run = (t_quantile(0.975, df) + t_quantile(0.8, df)) * sd_run * math.sqrt(2.0 / n)
+    return mde_pair, sd_pair, mde_run, sd_run
 
 
 def main():
@@ -295,10 +279,11 @@ def main():
             ok, lines = dose_check(runs, c, a.alpha, labels)
             failed |= not ok
             print("\n" + "\n".join(lines))
-        r = resolution(runs)
+        r = resolution(runs, a.baseline)
         if r:
-            print("\nResolution: run-level SD %.2f CER points (pooled over %d sets); with %d runs per set the smallest "
-                  "difference detectable at two-sided alpha 0.05 with power 0.8 is %.2f points." % (r[1], len(runs), len(seeds), r[0]))
+            print("\nResolution (two-sided alpha 0.05, power 0.8, %d runs per set): paired by seed, SD of the per-seed "
+                  "differences against %s %.2f CER points, smallest detectable difference %.2f points; unpaired, run-level "
+                  "SD %.2f, %.2f points." % (len(seeds), label_of(a.baseline, labels), r[1], r[0], r[3], r[2]))
         print()
     return 3 if (failed and a.require_dose) else 0
 
