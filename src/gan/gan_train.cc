@@ -1,8 +1,6 @@
 // The TS-RIRGAN training loop (docs/reference/spec-digest.md §3.4-3.5): per iteration, disc_updates x [D_R step,
 // D_S step], then a G_SR step and a G_RS step, each on a fresh pair of batches.
 #include <algorithm>
-#include <ATen/autocast_mode.h>
-
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -18,6 +16,7 @@
 #include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
+#include "gan/torch_compat.h"
 #include "gan/ts_rirgan.h"
 #include "io/rir_set.h"
 #include "util/cli.h"
@@ -138,13 +137,13 @@ class AutocastScope {
  public:
   explicit AutocastScope(bool enabled) : enabled_(enabled) {
     if (!enabled_) return;
-    previous_ = at::autocast::is_cpu_enabled();
-    at::autocast::set_autocast_cpu_dtype(at::kBFloat16);
-    at::autocast::set_cpu_enabled(true);
+    previous_ = torch_compat::cpu_autocast_enabled();
+    torch_compat::set_cpu_autocast_dtype(at::kBFloat16);
+    torch_compat::set_cpu_autocast_enabled(true);
   }
   ~AutocastScope() {
     if (!enabled_) return;
-    at::autocast::set_cpu_enabled(previous_);
+    torch_compat::set_cpu_autocast_enabled(previous_);
     at::autocast::clear_cache();
   }
 
