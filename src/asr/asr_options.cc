@@ -48,6 +48,7 @@ void AsrTrainOptions::Register(OptionsItf* opts) {
   opts->Register("seed", &seed, "Random seed (initialisation, batch order, masks, dropout)");
   opts->RegisterAlias("random-seed", "seed");
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  register_compute_device(opts, &device);
   opts->Register("batch-size", &batch_size, "Utterances per step (batches group similar lengths)");
   opts->Register("learning-rate", &learning_rate, "Adam learning rate");
   opts->Register("grad-clip", &grad_clip, "Gradient norm clip");
@@ -76,6 +77,7 @@ void AsrTrainOptions::validate() const {
 
 void AsrDecodeOptions::Register(OptionsItf* opts) {
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  register_compute_device(opts, &device);
   opts->Register("batch-size", &batch_size, "Utterances per forward pass");
 }
 

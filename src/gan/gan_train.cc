@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -479,7 +481,9 @@ void validate(const GanTrainOptions& o) {
   if (o.model.precision != "float32" && o.model.precision != "bfloat16") {
     throw Error("--precision must be float32 or bfloat16, got '" + o.model.precision + "'");
   }
-  if (o.model.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
+  if (o.model.precision == "bfloat16" && o.device != ComputeDevice::kCpu) {
+    throw Error("--precision=bfloat16 is for --device=cpu");
+  }
 }
 
 // Every stored setting must match, but the learning rates (a hand-made schedule), the lists (the
@@ -516,7 +520,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   tune_memory_for_torch();
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
-  const torch::Device device = gan::parse_device(o.device);
+  const torch::Device device = gan::torch_device(o.device);
 
   GanSettings settings = o.model;
   // The original generator has no correction to band-limit: the option is the residual's only.
