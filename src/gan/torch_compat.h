@@ -4,7 +4,11 @@
 // file to read. Checked against PyTorch's public headers (c10/core/Allocator.h and
 // aten/src/ATen/autocast_mode.h of the 2.x branch, and Debian's 1.13 headers); the 2.x branch is
 // compiled in CI without a 2.x install against stubs of exactly that API shape
-// (tests/gan/torch2_stub/, ctest torch_compat_2x), which fails when the code stops matching it.
+// (tests/gan/torch2_stub/, torch_compat_2x_test), which fails when the code stops matching it.
+// The minor versions below are where those headers changed as far as could be checked without
+// each release's headers at hand (the 2.0-2.2 releases were not compiled against); a LibTorch
+// that disagrees fails to compile here (an override that overrides nothing, an abstract
+// allocator, a deprecation), it does not misbehave.
 #pragma once
 #include <torch/version.h>  // TORCH_VERSION_MAJOR / _MINOR
 #include <ATen/autocast_mode.h>

@@ -4,6 +4,7 @@
 // that the test reads back (torch2_stub_state.h).
 #include "torch2_stub_state.h"
 
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <new>
