@@ -45,10 +45,18 @@ python=${PYTHON:-$(command -v python3)}
 
 elapsed() { echo $(($(date +%s) - start)); }
 note() { echo "$*" | tee -a "$summary" >&2; }
-# step NAME TIMEOUT_S COMMAND...: runs with a time limit, its output in OUT_DIR/NAME.log
+# step NAME TIMEOUT_S COMMAND...: runs with a time limit (cut to what is left of the whole run's
+# budget, DEADLINE_S, default 470 s), its output in OUT_DIR/NAME.log; skipped when none is left.
+deadline=${DEADLINE_S:-470}
 step() {
   local name=$1 limit=$2
   shift 2
+  local left=$((deadline - $(elapsed)))
+  if ((left < 10)); then
+    note "- \`$name\`: skipped (the run's ${deadline} s budget is spent)"
+    return 99
+  fi
+  ((limit > left)) && limit=$left
   local t0=$(date +%s.%N) rc=0
   timeout "$limit" "$@" >"$out/$name.log" 2>&1 || rc=$?
   local t1=$(date +%s.%N)
@@ -118,11 +126,11 @@ if [[ $device == cuda ]]; then
 fi
 note "- LibTorch: $torch_prefix"
 echo "cmake ${cmake_args[*]}" >"$out/cmake_command.txt"
-step configure 240 cmake "${cmake_args[@]}" || { note "configure failed: see configure.log"; exit 1; }
+step configure 180 cmake "${cmake_args[@]}" || { note "configure failed: see configure.log"; exit 1; }
 grep -E "Found Torch|Caffe2: CUDA|CUDA detected|without pkg-config|Found Boost|Found GTest" "$out/configure.log" \
   | sed 's/^/    /' | tee -a "$summary" >&2
 targets=(ts-rirgan-train gas-to-real asr-train asr-decode torch_compat_2x_test gan_networks_test)
-step build 360 cmake --build "$build" -j "$cores" --target "${targets[@]}" || { note "build failed: see build.log"; exit 1; }
+step build 300 cmake --build "$build" -j "$cores" --target "${targets[@]}" || { note "build failed: see build.log"; exit 1; }
 grep -ciE "warning:.*deprecated" "$out/build.log" | sed 's/^/- deprecation warnings in the build: /' | tee -a "$summary" >&2
 bin=$build/bin
 for p in ts-rirgan-train asr-train; do
@@ -159,7 +167,7 @@ note "    median s/step ($device, width $gan_width, batch $gan_batch, steps 2-$g
 # Both devices, each once (a rehearsal's "cuda" runs were on the CPU already).
 devices=("$device")
 [[ $device != cpu ]] && devices+=(cpu)
-if [[ $device != cpu ]] && (($(elapsed) < 360)); then
+if [[ $device != cpu ]] && (($(elapsed) < deadline - 110)); then
   step gan64_cpu 150 "${train[@]}" --device=cpu --steps=3 --width="$gan_width" --batch-size="$gan_batch" "$work/gan64_cpu"
   cpu_step=$(median_step "$work/gan64_cpu/loss_log.csv")
   note "    median s/step (cpu, $cores threads, width $gan_width, batch $gan_batch, steps 2-3): **$cpu_step**"
@@ -228,7 +236,7 @@ fi
 note ""
 note "## Tests against this LibTorch ($(elapsed) s)"
 step torch_compat_2x_test 60 "$bin/torch_compat_2x_test" --gtest_brief=1
-if (($(elapsed) < 400)); then
+if (($(elapsed) < deadline - 70)); then
   OMP_NUM_THREADS=4 step gan_networks_test 150 "$bin/gan_networks_test" --gtest_brief=1
   grep -E "PASSED|FAILED|tests ran" "$out/gan_networks_test.log" | sed 's/^/    /' | tee -a "$summary" >&2
 else
@@ -236,7 +244,7 @@ else
 fi
 # Every other target (all programs, tests, benchmarks, the header checks) with the time left: the
 # whole toolkit against this LibTorch and compiler (-k 0: every failure is listed, not only the first).
-left=$((450 - $(elapsed)))
+left=$((deadline - $(elapsed)))
 if [[ ${SKIP_BUILD:-0} == 1 ]]; then
   :
 elif ((left > 30)); then
