@@ -15,6 +15,7 @@
 #include <thread>
 #include <sys/resource.h>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 #include "eq/eq_set.h"

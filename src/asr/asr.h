@@ -8,6 +8,7 @@
 
 #include "asr/asr_features.h"
 #include "asr/asr_text.h"
+#include "gan/compute_device.h"
 #include "util/options.h"
 
 namespace tsrir {
@@ -38,6 +39,10 @@ struct AsrTrainOptions {
   double max_minutes = 0.0;     // > 0: stop (with a checkpoint) after this much training time
   Seed seed = 0;
   int num_threads = 1;
+  // The network, batches and CTC loss on the CPU (deterministic for a --seed and --num-threads) or
+  // a CUDA GPU (not bit-reproducible: cuDNN's recurrent layers and CUDA's CTC gradient sum in
+  // varying order). Not a setting of the model: a resumed run may change it.
+  ComputeDevice device = ComputeDevice::kCpu;
   int batch_size = 16;          // utterances per step (batches are made of similar lengths)
   bool sample_copies = false;   // one reverberant copy per source utterance (utt2uniq) per epoch
   double learning_rate = 1e-3;  // Adam
@@ -74,6 +79,7 @@ struct AsrDecodeOptions {
   std::string data_dir;
   std::string out_dir;          // hyp, wer, cer, utt_errors (each written atomically)
   int num_threads = 1;
+  ComputeDevice device = ComputeDevice::kCpu;  // any model decodes on either
   int batch_size = 16;
 
   void Register(OptionsItf* opts);

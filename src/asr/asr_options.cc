@@ -48,6 +48,7 @@ void AsrTrainOptions::Register(OptionsItf* opts) {
   opts->Register("seed", &seed, "Random seed (initialisation, batch order, masks, dropout)");
   opts->RegisterAlias("random-seed", "seed");
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  register_compute_device(opts, &device);
   opts->Register("batch-size", &batch_size, "Utterances per step (batches group similar lengths)");
   opts->Register("sample-copies", &sample_copies,
                  "Each epoch trains on one copy per source utterance (the data dir's utt2uniq, as "
@@ -79,6 +80,7 @@ void AsrTrainOptions::validate() const {
 
 void AsrDecodeOptions::Register(OptionsItf* opts) {
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  register_compute_device(opts, &device);
   opts->Register("batch-size", &batch_size, "Utterances per forward pass");
 }
 

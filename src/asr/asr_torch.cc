@@ -5,10 +5,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "asr/asr.h"
 #include "asr/asr_batches.h"
@@ -170,9 +175,11 @@ void save_checkpoint(const std::string& path, const std::string& settings_text, 
   commit_temp_path(temp, path);
 }
 
-void open_checkpoint(const std::string& path, torch::serialize::InputArchive& archive) {
+// Tensors are read onto `device` (where they were saved does not matter: a model trained on a GPU
+// decodes on the CPU and the other way round).
+void open_checkpoint(const std::string& path, torch::serialize::InputArchive& archive, torch::Device device) {
   try {
-    archive.load_from(path, torch::kCPU);
+    archive.load_from(path, device);
   } catch (const std::exception& e) {
     std::string why = e.what();
     throw Error(path + ": not a readable asr-train checkpoint (" + why.substr(0, why.find('\n')) + ")");
@@ -231,10 +238,90 @@ void write_log(const std::string& path, const std::vector<std::string>& rows) {
   out.commit();
 }
 
+torch::Device torch_device_of(ComputeDevice device) {
+  require_compute_device(device);  // the error a user needs, before any data is read
+  return device == ComputeDevice::kCuda ? torch::Device(torch::kCUDA) : torch::Device(torch::kCPU);
+}
+
+// The utterances with a transcript (others are reported and skipped) and their character targets.
+std::vector<AsrUtterance> load_training_set(const AsrTrainOptions& o, std::vector<std::vector<int>>* targets) {
+  const auto load_start = Clock::now();
+  std::vector<AsrUtterance> all = load_asr_utterances(o.data_dir, o.features, true, o.num_threads);
+  std::vector<AsrUtterance> utts;
+  size_t empty = 0;
+  for (auto& u : all) {
+    if (u.text.empty()) ++empty;
+    else utts.push_back(std::move(u));
+  }
+  if (empty > 0) log_warning(o.data_dir + "/text: " + std::to_string(empty) + " utterance(s) without letters skipped");
+  if (utts.empty()) throw Error(o.data_dir + ": no utterance with a transcript to train on");
+  targets->assign(utts.size(), {});
+  double hours = 0.0;
+  for (size_t i = 0; i < utts.size(); ++i) {
+    (*targets)[i] = encode_characters(utts[i].text);
+    hours += utts[i].features.num_frames * o.features.frame_shift_ms / 3.6e6;
+  }
+  log_info("loaded " + std::to_string(utts.size()) + " utterances (" + format_double(hours, 3) + " h) from " +
+           o.data_dir + " in " + format_double(seconds_since(load_start), 3) + " s");
+  return utts;
+}
+
+// Model, optimiser state and progress of `path`, read onto the model's device.
+Progress resume_from(const std::string& path, CtcModel& model, torch::optim::Adam& optimizer, torch::Device device) {
+  torch::serialize::InputArchive archive;
+  open_checkpoint(path, archive, device);
+  load_model(archive, model, path);
+  torch::serialize::InputArchive optimizer_archive;
+  if (!archive.try_read("optimizer", optimizer_archive)) throw Error(path + ": checkpoint lacks the optimiser");
+  optimizer.load(optimizer_archive);
+  Progress p;
+  p.epoch = int(read_int(archive, "epoch", path));
+  p.batch = read_int(archive, "batch", path);
+  p.step = read_int(archive, "step", path);
+  p.epoch_loss_sum = read_real(archive, "epoch_loss_sum", path);
+  p.last_epoch_loss = read_real(archive, "last_epoch_loss", path);
+  return p;
+}
+
+// One optimiser step on the utterances `members`; returns the batch's mean CTC loss. The batch
+// is made (and masked) on the CPU and moved; the lengths stay on the CPU, where packing and the
+// CTC loss read them.
+double train_step(CtcModel& model, torch::optim::Adam& optimizer, const AsrTrainOptions& o, torch::Device device,
+                  const std::vector<AsrUtterance>& utts, const std::vector<std::vector<int>>& targets,
+                  const std::vector<size_t>& members, const Progress& p) {
+  namespace F = torch::nn::functional;
+  std::vector<const AsrUtterance*> batch_utts;
+  std::vector<int64_t> flat_targets, target_lengths;
+  for (size_t i : members) {
+    batch_utts.push_back(&utts[i]);
+    flat_targets.insert(flat_targets.end(), targets[i].begin(), targets[i].end());
+    target_lengths.push_back(int64_t(targets[i].size()));
+  }
+  torch::Tensor lengths, out_lengths;
+  torch::Tensor x = make_batch(batch_utts, &lengths, &o, "mask/epoch/" + std::to_string(p.epoch)).to(device);
+  // Dropout draws depend on (seed, step) only, so a resumed run repeats them.
+  torch::manual_seed(o.seed * 1000003ULL + uint64_t(p.step));
+  torch::Tensor log_probs = model->forward(x, lengths, &out_lengths);
+  torch::Tensor loss = F::ctc_loss(log_probs.transpose(0, 1), torch::tensor(flat_targets, torch::kInt64).to(device),
+                                   out_lengths, torch::tensor(target_lengths, torch::kInt64),
+                                   F::CTCLossFuncOptions().blank(kCtcBlank).zero_infinity(true).reduction(torch::kMean));
+  const double value = loss.item<double>();
+  if (!std::isfinite(value)) {
+    throw Error("CTC loss is not finite at step " + std::to_string(p.step + 1) +
+                " (the last checkpoint stays in place; try a lower --learning-rate)");
+  }
+  optimizer.zero_grad();
+  loss.backward();
+  torch::nn::utils::clip_grad_norm_(model->parameters(), o.grad_clip);
+  optimizer.step();
+  return value;
+}
+
 }  // namespace
 
 AsrTrainResult train_asr(const AsrTrainOptions& o) {
   o.validate();
+  const torch::Device device = torch_device_of(o.device);
   tune_memory_for_torch();
   set_openblas_threads(1);
   torch::set_num_threads(o.num_threads);
@@ -255,25 +342,8 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
     throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");
   }
 
-  const auto load_start = Clock::now();
-  std::vector<AsrUtterance> all = load_asr_utterances(o.data_dir, o.features, true, o.num_threads);
-  std::vector<AsrUtterance> utts;
-  size_t empty = 0;
-  for (auto& u : all) {
-    if (u.text.empty()) ++empty;
-    else utts.push_back(std::move(u));
-  }
-  all.clear();
-  if (empty > 0) log_warning(o.data_dir + "/text: " + std::to_string(empty) + " utterance(s) without letters skipped");
-  if (utts.empty()) throw Error(o.data_dir + ": no utterance with a transcript to train on");
-  std::vector<std::vector<int>> targets(utts.size());
-  double hours = 0.0;
-  for (size_t i = 0; i < utts.size(); ++i) {
-    targets[i] = encode_characters(utts[i].text);
-    hours += utts[i].features.num_frames * o.features.frame_shift_ms / 3.6e6;
-  }
-  log_info("loaded " + std::to_string(utts.size()) + " utterances (" + format_double(hours, 3) + " h) from " +
-           o.data_dir + " in " + format_double(seconds_since(load_start), 3) + " s");
+  std::vector<std::vector<int>> targets;
+  const std::vector<AsrUtterance> utts = load_training_set(o, &targets);
 
   // The model dir is the toolkit's (io/owned_output.h): never a user's dir, never an input.
   claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
@@ -281,22 +351,13 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
   if (!o.resume) write_asr_settings(settings_path, settings);
 
   torch::manual_seed(o.seed);
-  CtcModel model(o.model, o.features.num_mel_bins);
+  CtcModel model(o.model, o.features.num_mel_bins);  // initialised on the CPU: the same draws on any device
+  model->to(device);
   torch::optim::Adam optimizer(model->parameters(), torch::optim::AdamOptions(o.learning_rate));
   Progress p;
   std::vector<std::string> log_rows;
   if (o.resume) {
-    torch::serialize::InputArchive archive;
-    open_checkpoint(checkpoint_path, archive);
-    load_model(archive, model, checkpoint_path);
-    torch::serialize::InputArchive optimizer_archive;
-    if (!archive.try_read("optimizer", optimizer_archive)) throw Error(checkpoint_path + ": checkpoint lacks the optimiser");
-    optimizer.load(optimizer_archive);
-    p.epoch = int(read_int(archive, "epoch", checkpoint_path));
-    p.batch = read_int(archive, "batch", checkpoint_path);
-    p.step = read_int(archive, "step", checkpoint_path);
-    p.epoch_loss_sum = read_real(archive, "epoch_loss_sum", checkpoint_path);
-    p.last_epoch_loss = read_real(archive, "last_epoch_loss", checkpoint_path);
+    p = resume_from(checkpoint_path, model, optimizer, device);
     log_rows = read_log_rows(log_path, p.step);
     log_info("resuming from " + checkpoint_path + " after epoch " + std::to_string(p.epoch) + ", batch " +
              std::to_string(p.batch) + " (step " + std::to_string(p.step) + ")");
@@ -308,7 +369,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
   log_info("model: " + std::to_string(result.num_parameters) + " parameters (" + std::to_string(o.model.conv_layers) +
            " conv x " + std::to_string(o.model.conv_channels) + ", " + std::to_string(o.model.rnn_layers) + " bi-" +
            rnn_type_name(o.model.rnn_type) + " x " + std::to_string(o.model.rnn_hidden) + "), " + std::to_string(o.num_threads) +
-           " thread(s)");
+           " thread(s), device " + compute_device_name(o.device));
 
   const EpochBatcher batcher(utts, o.batch_size, o.seed, o.sample_copies);
   if (o.sample_copies) {
@@ -322,7 +383,6 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
     save_checkpoint(checkpoint_path, settings_text, model, optimizer, p);
     write_log(log_path, log_rows);
   };
-  namespace F = torch::nn::functional;
   model->train();
   while (p.epoch < o.epochs) {
     const std::vector<std::vector<size_t>> batches = batcher.epoch_batches(p.epoch);
@@ -340,31 +400,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
         return result;
       }
       const auto step_start = Clock::now();
-      const auto& members = batches[size_t(p.batch)];
-      std::vector<const AsrUtterance*> batch_utts;
-      std::vector<int64_t> flat_targets, target_lengths;
-      for (size_t i : members) {
-        batch_utts.push_back(&utts[i]);
-        flat_targets.insert(flat_targets.end(), targets[i].begin(), targets[i].end());
-        target_lengths.push_back(int64_t(targets[i].size()));
-      }
-      torch::Tensor lengths, out_lengths;
-      torch::Tensor x = make_batch(batch_utts, &lengths, &o, "mask/epoch/" + std::to_string(p.epoch));
-      // Dropout draws depend on (seed, step) only, so a resumed run repeats them.
-      torch::manual_seed(o.seed * 1000003ULL + uint64_t(p.step));
-      torch::Tensor log_probs = model->forward(x, lengths, &out_lengths);
-      torch::Tensor loss = F::ctc_loss(log_probs.transpose(0, 1), torch::tensor(flat_targets, torch::kInt64), out_lengths,
-                                       torch::tensor(target_lengths, torch::kInt64),
-                                       F::CTCLossFuncOptions().blank(kCtcBlank).zero_infinity(true).reduction(torch::kMean));
-      const double value = loss.item<double>();
-      if (!std::isfinite(value)) {
-        throw Error("CTC loss is not finite at step " + std::to_string(p.step + 1) +
-                    " (the last checkpoint stays in place; try a lower --learning-rate)");
-      }
-      optimizer.zero_grad();
-      loss.backward();
-      torch::nn::utils::clip_grad_norm_(model->parameters(), o.grad_clip);
-      optimizer.step();
+      const double value = train_step(model, optimizer, o, device, utts, targets, batches[size_t(p.batch)], p);
       ++p.step;
       ++p.batch;
       p.epoch_loss_sum += value;
@@ -400,6 +436,7 @@ AsrTrainResult train_asr(const AsrTrainOptions& o) {
 
 AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
   o.validate();
+  const torch::Device device = torch_device_of(o.device);
   set_openblas_threads(1);
   torch::set_num_threads(o.num_threads);
   const auto start = Clock::now();
@@ -414,7 +451,7 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
   CtcModel model(config, features.num_mel_bins);
   {
     torch::serialize::InputArchive archive;
-    open_checkpoint(checkpoint_path, archive);
+    open_checkpoint(checkpoint_path, archive, torch::kCPU);
     c10::IValue stored;
     if (!archive.try_read("settings", stored) || !stored.isString() ||
         stored.toStringRef() != asr_settings_text(settings)) {
@@ -422,6 +459,7 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
     }
     load_model(archive, model, checkpoint_path);
   }
+  model->to(device);
   model->eval();
   torch::NoGradGuard no_grad;
 
@@ -431,8 +469,8 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
     std::vector<const AsrUtterance*> batch;
     for (size_t j = i; j < std::min(utts.size(), i + size_t(o.batch_size)); ++j) batch.push_back(&utts[j]);
     torch::Tensor lengths, out_lengths;
-    torch::Tensor x = make_batch(batch, &lengths, nullptr, "");
-    torch::Tensor best = model->forward(x, lengths, &out_lengths).argmax(2).contiguous();
+    torch::Tensor x = make_batch(batch, &lengths, nullptr, "").to(device);
+    torch::Tensor best = model->forward(x, lengths, &out_lengths).argmax(2).to(torch::kCPU).contiguous();
     for (size_t b = 0; b < batch.size(); ++b) {
       const int64_t n = out_lengths[int64_t(b)].item<int64_t>();
       const int64_t* ids = best[int64_t(b)].data_ptr<int64_t>();

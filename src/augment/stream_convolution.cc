@@ -1,6 +1,7 @@
 #include "augment/stream_convolution.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "util/error.h"
 

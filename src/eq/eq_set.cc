@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <utility>
 
 #include "io/atomic_output.h"
 #include "io/rir_set.h"

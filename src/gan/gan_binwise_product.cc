@@ -7,6 +7,7 @@
 #include <atomic>
 #include <climits>
 #include <complex>
+#include <cstdint>
 
 #include "gan/gan_runtime.h"
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
+#include <tuple>
+#include <utility>
 
 #include <c10/core/InferenceMode.h>
 #include <torch/fft.h>
@@ -414,15 +417,9 @@ void set_torch_threads(int num_threads) {
   torch::set_num_threads(std::max(1, num_threads));
 }
 
-torch::Device parse_device(const std::string& name) {
-  if (name == "cpu") return torch::kCPU;
-  if (name == "cuda") {
-    if (!torch::cuda::is_available()) {
-      throw Error("--device=cuda: this LibTorch build has no CUDA support or sees no GPU");
-    }
-    return torch::kCUDA;
-  }
-  throw Error("--device must be cpu or cuda, got '" + name + "'");
+torch::Device torch_device(ComputeDevice device) {
+  require_compute_device(device);
+  return device == ComputeDevice::kCuda ? torch::Device(torch::kCUDA) : torch::Device(torch::kCPU);
 }
 
 long long count_parameters(torch::nn::Module& module) {
@@ -492,4 +489,18 @@ Generator load_generator(const std::string& path, const std::string& name, GanSe
 }
 
 }  // namespace gan
+
+void require_compute_device(ComputeDevice device) {
+  if (device != ComputeDevice::kCuda) return;
+  // hasCUDA: LibTorch's CUDA library is loaded (a CUDA build whose libtorch_cuda the program links).
+  if (!at::hasCUDA()) {
+    throw Error("--device=cuda: this program's LibTorch has no CUDA support (Debian's libtorch is CPU-only; "
+                "build against a CUDA LibTorch, and check that `ldd` on the program lists libtorch_cuda.so: "
+                "docs/recipe.md, 'Building with a CUDA LibTorch')");
+  }
+  if (torch::cuda::device_count() == 0) {
+    throw Error("--device=cuda: LibTorch has CUDA support but sees no GPU (nvidia-smi, CUDA_VISIBLE_DEVICES, "
+                "the driver)");
+  }
+}
 }  // namespace tsrir

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gan/compute_device.h"
 #include "gan/gan_settings.h"
 
 namespace tsrir {
@@ -157,8 +158,8 @@ struct CycleGan {
 };
 
 void set_torch_threads(int num_threads);
-// "cpu" or "cuda" (Error if CUDA is asked for and this LibTorch has none / sees no GPU).
-torch::Device parse_device(const std::string& name);
+// The torch device of --device (require_compute_device's Error when cuda cannot be used).
+torch::Device torch_device(ComputeDevice device);
 long long count_parameters(torch::nn::Module& module);
 
 // Checkpoint: one file with the settings text, the step, all four networks and the optimiser

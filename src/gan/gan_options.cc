@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <string>
 
+#include "gan/compute_device.h"
 #include "gan/ts_rirgan.h"
 #include "util/error.h"
 #include "util/options.h"
@@ -100,7 +101,7 @@ void GanTrainOptions::Register(OptionsItf* opts) {
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch (OpenBLAS is kept at 1)");
   opts->Register("checkpoint-every", &checkpoint_every, "Write checkpoint.pt every N steps");
   opts->Register("resume", &resume, "Continue from <model-dir>/checkpoint.pt (same settings required)");
-  register_choice(opts, "device", &device, {"cpu", "cuda"}, "Where to run; cuda needs a LibTorch with CUDA and a GPU");
+  register_compute_device(opts, &device);
   opts->Register("collapse-check-every", &collapse_check_every,
                  "Every N steps translate a fixed probe batch and stop with an error if the outputs are "
                  "silent or nearly equal across inputs (0 = never)");
@@ -123,7 +124,7 @@ void GanTranslateOptions::Register(OptionsItf* opts) {
   opts->Register("restore-level", &restore_level, "Scale each output by its input's peak |x|");
   opts->RegisterEnum("format", &format, {{"float", SampleFormat::kFloat32}, {"int16", SampleFormat::kInt16}},
                      "Output sample format");
-  register_choice(opts, "device", &device, {"cpu", "cuda"}, "Where to run; cuda needs a LibTorch with CUDA and a GPU");
+  register_compute_device(opts, &device);
   opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and reading");
   register_choice(opts, "precision", &precision, {"float32", "bfloat16"},
                   "bfloat16: faster on CPUs with AVX512-BF16/AMX (slower without), output within ~1% RMS "

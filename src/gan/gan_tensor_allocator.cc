@@ -5,12 +5,16 @@
 
 #include <c10/core/CPUAllocator.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include <list>
 #include <mutex>
 #include <new>
 #include <unordered_map>
+#include <utility>
+
+#include "gan/torch_compat.h"
 
 namespace tsrir {
 namespace {
@@ -124,13 +128,16 @@ void release_any(void* p) {
   if (!pool().release(p)) g_small_deleter(p);
 }
 
-class ReusingHugePageAllocator final : public c10::Allocator {
+// allocate() and copy_data() differ between LibTorch versions: torch_compat's base adapts them.
+class ReusingHugePageAllocator final : public torch_compat::CpuAllocatorBase {
  public:
-  c10::DataPtr allocate(size_t n) const override {
+  c10::DeleterFnPtr raw_deleter() const override { return &release_any; }
+
+ protected:
+  c10::DataPtr allocate_block(size_t n) const override {
     void* p = n < kLargeBytes ? g_small->raw_allocate(n) : pool().acquire(round_up(n, kHugePageBytes));
     return {p, p, &release_any, c10::Device(c10::DeviceType::CPU)};
   }
-  c10::DeleterFnPtr raw_deleter() const override { return &release_any; }
 };
 
 }  // namespace

@@ -1,10 +1,10 @@
 // The TS-RIRGAN training loop (docs/reference/spec-digest.md §3.4-3.5): per iteration, disc_updates x [D_R step,
 // D_S step], then a G_SR step and a G_RS step, each on a fresh pair of batches.
 #include <algorithm>
-#include <ATen/autocast_mode.h>
-
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -18,6 +18,7 @@
 #include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
 #include "gan/gan_settings.h"
+#include "gan/torch_compat.h"
 #include "gan/ts_rirgan.h"
 #include "io/rir_set.h"
 #include "util/cli.h"
@@ -138,13 +139,13 @@ class AutocastScope {
  public:
   explicit AutocastScope(bool enabled) : enabled_(enabled) {
     if (!enabled_) return;
-    previous_ = at::autocast::is_cpu_enabled();
-    at::autocast::set_autocast_cpu_dtype(at::kBFloat16);
-    at::autocast::set_cpu_enabled(true);
+    previous_ = torch_compat::cpu_autocast_enabled();
+    torch_compat::set_cpu_autocast_dtype(at::kBFloat16);
+    torch_compat::set_cpu_autocast_enabled(true);
   }
   ~AutocastScope() {
     if (!enabled_) return;
-    at::autocast::set_cpu_enabled(previous_);
+    torch_compat::set_cpu_autocast_enabled(previous_);
     at::autocast::clear_cache();
   }
 
@@ -480,7 +481,9 @@ void validate(const GanTrainOptions& o) {
   if (o.model.precision != "float32" && o.model.precision != "bfloat16") {
     throw Error("--precision must be float32 or bfloat16, got '" + o.model.precision + "'");
   }
-  if (o.model.precision == "bfloat16" && o.device != "cpu") throw Error("--precision=bfloat16 is for --device=cpu");
+  if (o.model.precision == "bfloat16" && o.device != ComputeDevice::kCpu) {
+    throw Error("--precision=bfloat16 is for --device=cpu");
+  }
 }
 
 // Every stored setting must match, but the learning rates (a hand-made schedule), the lists (the
@@ -517,7 +520,7 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   tune_memory_for_torch();
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
-  const torch::Device device = gan::parse_device(o.device);
+  const torch::Device device = gan::torch_device(o.device);
 
   GanSettings settings = o.model;
   // The original generator has no correction to band-limit: the option is the residual's only.

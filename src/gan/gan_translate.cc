@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -43,7 +44,7 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   tune_memory_for_torch();
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
-  const torch::Device device = gan::parse_device(o.device);
+  const torch::Device device = gan::torch_device(o.device);
 
   std::string checkpoint = o.model;
   if (fs::is_directory(o.model)) checkpoint = (fs::path(o.model) / "checkpoint.pt").string();

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "gan/compute_device.h"
 #include "gan/gan_settings.h"
 #include "io/audio_io.h"
 
@@ -24,7 +25,7 @@ struct GanTrainOptions {
   int num_threads = 1;
   long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
   bool resume = false;
-  std::string device = "cpu";   // "cpu" | "cuda"
+  ComputeDevice device = ComputeDevice::kCpu;
   // Collapse guard: every N steps (0: never) G_SR translates a fixed probe batch of synthetic
   // RIRs; training stops with an Error when the outputs are silent or nearly equal to each other
   // while their inputs are not.
@@ -61,7 +62,7 @@ struct GanTranslateOptions {
   // original. true: each output is scaled by the input's original peak |x|.
   bool restore_level = false;
   SampleFormat format = SampleFormat::kFloat32;
-  std::string device = "cpu";
+  ComputeDevice device = ComputeDevice::kCpu;
   int num_threads = 1;
   // "float32", or "bfloat16": weights and activations in bfloat16 with float32 accumulation
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32

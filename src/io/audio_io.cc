@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "io/rxfile.h"
 #include "io/sndfile_api.h"

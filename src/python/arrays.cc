@@ -1,6 +1,8 @@
 #include "arrays.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "util/error.h"
 

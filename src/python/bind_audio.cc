@@ -1,5 +1,7 @@
 // Audio in and out through the toolkit's own reader (libsndfile, rxfilenames with pipes) and WAV
 // writer, so a Python pipeline reads and writes samples exactly as the programs do.
+#include <utility>
+
 #include <pybind11/stl.h>
 
 #include "arrays.h"

@@ -2,6 +2,8 @@
 // the target gains drawn from the model with the stream Rng::for_item(seed, rir id), then
 // equalize_rir() with the model's gain method. For the same id, seed and options the samples
 // are those `rir-eq apply --format=float` writes.
+#include <utility>
+
 #include <pybind11/stl.h>
 
 #include "arrays.h"

@@ -1,5 +1,6 @@
 #include "sim/onset_shift.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 

@@ -3,6 +3,7 @@
 // as the TS-RIR paper does (it had no material data either). Draws are keyed by (seed, rir id):
 // the same RIR gets the same absorption whatever else is in the list.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 

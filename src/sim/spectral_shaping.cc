@@ -1,5 +1,6 @@
 #include "sim/spectral_shaping.h"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 

@@ -1,6 +1,7 @@
 #include "util/config_file.h"
 
 #include <fstream>
+#include <utility>
 
 #include "util/error.h"
 #include "util/strings.h"

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -105,7 +107,8 @@ TEST(AsrCli, ResumeContinuesExactly) {
   RunResult bad = run(base + d + "/split --epochs=3 --resume --conv-kernel=3", d);
   EXPECT_NE(bad.status, 0);
   EXPECT_NE(bad.err.find("--conv-kernel=5"), std::string::npos) << bad.err;
-  RunResult r = run(base + d + "/split --epochs=3 --resume", d);
+  // --device=cpu spelled out (the default) continues the same run.
+  RunResult r = run(base + d + "/split --epochs=3 --resume --device=cpu", d);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(loss_rows(d + "/straight/loss_log.csv"), loss_rows(d + "/split/loss_log.csv"));
   // Mid-epoch: --max-minutes stops after the first step (a 6 ms budget), the checkpoint records
@@ -151,6 +154,29 @@ TEST(AsrCli, BadInputNamesTheFile) {
   r = run(kBin + "/asr-train --epochs=1" + kTiny + " " + d + "/test " + d + "/m2", d);
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("wav.scp"), std::string::npos) << r.err;
+  fs::remove_all(d);
+}
+
+// --device=cuda on a machine where LibTorch cannot use a GPU (Debian's CPU-only LibTorch, or no
+// GPU): both programs stop before reading anything, with an error that says why and where the
+// CUDA build is described, and create nothing. (On a GPU machine with a CUDA build the option
+// works; bench/gan/cuda_check.sh runs it there.)
+TEST(AsrCli, DeviceCudaWithoutAGpuIsAClearError) {
+  if (fs::exists("/dev/nvidia0")) GTEST_SKIP() << "a GPU is present: bench/gan/cuda_check.sh covers --device=cuda here";
+  const std::string d = scratch_dir("cuda");
+  for (const std::string& cmd : {kBin + "/asr-train --device=cuda --epochs=1 " + d + "/nodata " + d + "/m",
+                                 kBin + "/asr-decode --device=cuda " + d + "/m " + d + "/nodata " + d + "/out"}) {
+    const RunResult r = run(cmd, d);
+    EXPECT_EQ(r.status, 1) << cmd;
+    EXPECT_NE(r.err.find("--device=cuda: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("docs/recipe.md"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("nodata"), std::string::npos) << "the device is checked before the data: " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(d + "/m"));
+  EXPECT_FALSE(fs::exists(d + "/out"));
+  const RunResult bad = run(kBin + "/asr-train --device=gpu " + d + "/nodata " + d + "/m", d);
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_NE(bad.err.find("expected one of: cpu, cuda"), std::string::npos) << bad.err;
   fs::remove_all(d);
 }
 

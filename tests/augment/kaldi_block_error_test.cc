@@ -4,6 +4,7 @@
 // too, which is the defect), the inverse and overlap-add as Kaldi does them, in double precision.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>

@@ -2,6 +2,7 @@
 // non-zero exit, nothing half-written).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

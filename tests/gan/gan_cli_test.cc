@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -99,7 +100,14 @@ TEST_F(GanCli, HelpAndUsageErrors) {
   // Both spellings of an option.
   RunResult r = run(train("--steps 1 --device=cpu", "m"), dir_);
   EXPECT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(run(train("--steps=1 --device=tpu", "m2"), dir_).err.find("cpu | cuda"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --device=tpu", "m2"), dir_).err.find("cpu, cuda"), std::string::npos);
+  // Without a GPU LibTorch can use, --device=cuda is refused before any data is read.
+  if (!fs::exists("/dev/nvidia0")) {
+    r = run(train("--steps=1 --device=cuda", "m3"), dir_);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.err.find("--device=cuda: "), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ + "/m3"));
+  }
 }
 
 // The collapse guard: the original's generator with Glorot kernels at width 2 outputs ~tanh(0)

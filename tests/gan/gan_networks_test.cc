@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <utility>
 
 #include <c10/core/CPUAllocator.h>
 #include <c10/core/InferenceMode.h>

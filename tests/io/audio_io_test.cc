@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 
 #include "io/audio_io.h"
 #include "io/rir_set.h"

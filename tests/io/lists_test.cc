@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include "io/kaldi_lists.h"
 #include "test_dir.h"
 #include "util/error.h"
