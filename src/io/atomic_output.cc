@@ -10,6 +10,7 @@
 
 #include "io/owned_output.h"
 #include "util/error.h"
+#include "util/remove_tree.h"
 
 namespace fs = std::filesystem;
 
@@ -35,7 +36,7 @@ void commit_temp_path(const std::string& temp_path, const std::string& final_pat
 
 void discard_temp_path(const std::string& temp_path) {
   std::error_code ec;
-  fs::remove_all(temp_path, ec);
+  remove_tree(temp_path, ec);
   unregister_temp_path(temp_path);
 }
 

@@ -22,6 +22,7 @@
 #include "util/cli.h"
 #include "util/error.h"
 #include "util/strings.h"
+#include "util/remove_tree.h"
 
 namespace fs = std::filesystem;
 
@@ -214,7 +215,7 @@ void remove_dead_staging(const std::string& dir) {
     const size_t start = name.find(".tmp.") + 5;
     const long pid = std::strtol(name.c_str() + start, nullptr, 10);
     if (pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
-      fs::remove_all(e.path(), ec);
+      remove_tree(e.path().string(), ec);
     }
   }
 }

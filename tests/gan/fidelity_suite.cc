@@ -10,6 +10,7 @@
 
 #include "fidelity_domains.h"
 #include "io/rir_set.h"
+#include "util/remove_tree.h"
 
 namespace fs = std::filesystem;
 
@@ -48,7 +49,7 @@ std::vector<tsrir::Signal> signals_of(const std::vector<FidelityRir>& rirs) {
 FidelitySuiteResult run_fidelity_suite(const FidelitySuiteOptions& o) {
   FidelitySuiteResult result;
   const std::string d = o.work_dir;
-  fs::remove_all(d);
+  tsrir::remove_tree(d);
   fs::create_directories(d);
   FidelityDomainSpec synthetic_spec, real_spec;
   real_spec.hidden_effect = true;
@@ -87,7 +88,7 @@ FidelitySuiteResult run_fidelity_suite(const FidelitySuiteOptions& o) {
     }
     if (result.error.empty()) result.report = evaluate_fidelity(inputs, outputs, signals_of(test_real));
   }
-  if (!o.keep && result.passed()) fs::remove_all(d);
+  if (!o.keep && result.passed()) tsrir::remove_tree(d);
   return result;
 }
 
