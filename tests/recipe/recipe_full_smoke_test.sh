@@ -81,7 +81,17 @@ check "stage 1: train_clean_460 is a valid union of train-clean-100 and 360" \
   bash -c "validate-data-dir --no-feats '$tmp/data/train_clean_460' 2>/dev/null && grep -q '^14-208-0000 ' '$tmp/data/train_clean_460/wav.scp' && grep -q '^103-1240-0001 ' '$tmp/data/train_clean_460/wav.scp'"
 check "stage 1: BUT staircase dropped, 24 of 36 RIRs kept" \
   grep -qx 'found=36 staircase_dropped=12 outside_room_dropped=0 repeats_dropped=0 kept=24' "$tmp/data/local/but/counts.txt"
-check "stage 1: 24 RIRs split (scaled 773:194:242 -> 15/4/5)" grep -q 'total=24 train=15 dev=4 test=5' "$tmp/data/rirs/split/split.txt"
+# run.sh splits by source position (--group-fields "3 4 5 6 7 8": room, speaker position x y z,
+# ...): whole groups, so the sizes only approximate the scaled 15/4/5; what must hold is that every
+# RIR is in exactly one part and no group has RIRs in two parts.
+check "stage 1: 24 RIRs split by source position (groups=fields 3 4 5 6 7 8)" \
+  grep -q '^total=24 .*groups=fields 3 4 5 6 7 8' "$tmp/data/rirs/split/split.txt"
+check "stage 1: every RIR in exactly one part, no source position in two parts" \
+  awk 'FNR == 1 { part = FILENAME } part ~ /meta.txt$/ { key[$1] = $3 " " $4 " " $5 " " $6 " " $7 " " $8; next }
+       { n++; if ($1 in seen) bad = 1; seen[$1] = 1; k = key[$1]; if (k == "") bad = 1
+         if (k in owner && owner[k] != part) bad = 1; owner[k] = part }
+       END { exit bad || n != 24 }' "$tmp/data/rirs/real_all/meta.txt" \
+      "$tmp/data/rirs/split/train.ids" "$tmp/data/rirs/split/dev.ids" "$tmp/data/rirs/split/test.ids"
 check "stage 1: no staircase RIR in any list" bash -c "! grep -q VUT_FIT_L227 '$tmp'/data/rirs/real_*/rir_list"
 check "stage 2: GAS metadata from BUT (room VUT_FIT_E112 is 9 x 7 x 3.2 m)" \
   grep -q '^VUT_FIT_E112-SpkID01_20190503_S-01 room=9,7,3.2 ' "$tmp/data/rirs/gas_all/room_list"

@@ -236,6 +236,11 @@ check "table2.py: Student's t tail agrees with tables (P(T > 2.0 | 10 df) = 0.03
 # A dose chain that does not rise fails, and --require-dose turns that into exit status 3.
 python3 local/asr/table2.py --sets "real gas" --seeds "0 1 2 3 4" --tests A --dose "gas real" --require-dose "$e" >/dev/null 2>&1
 check "table2.py: a falling dose chain fails with exit status 3 under --require-dose" test $? -eq 3
+# One seed (the tiny demo): the table prints means and differences, and no interval or p-value.
+t1=$(python3 local/asr/table2.py --sets "real gas" --seeds "0" --tests A --dose "gas real" "$e" 2>&1)
+check "table2.py: one seed gives differences without intervals or p-values (n/a), and no dose verdict of PASS" \
+  bash -c "echo \"\$1\" | grep -q '^| real (oracle) | 20.00 | 40.00 | -10.00 (n/a) | -33.3 % | n/a | n/a | n/a |' &&
+           ! echo \"\$1\" | grep -q PASS" _ "$t1"
 rm "$e/gas_seed1/decode_A/utt_errors"
 expect_fail "table2.py: a missing decode is an error" python3 local/asr/table2.py --sets "real gas" --seeds "0 1" --tests A "$e"
 

@@ -123,6 +123,9 @@ def sd(v):
     return math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1))
 
 
+NAN = float("nan")
+
+
 def ci95(v):
     """Half-width of the 95 % t interval of the mean."""
     if len(v) < 2:
@@ -131,7 +134,10 @@ def ci95(v):
 
 
 def welch(a, b):
-    """(difference a - b, its 95 % half-width, two-sided p, one-sided p for a > b, df)."""
+    """(difference a - b, its 95 % half-width, two-sided p, one-sided p for a > b, df); NaN statistics
+    when either set has fewer than two runs (no run-level variance to test against)."""
+    if min(len(a), len(b)) < 2:
+        return mean(a) - mean(b), NAN, NAN, NAN, NAN
     va, vb = sd(a) ** 2 / len(a), sd(b) ** 2 / len(b)
     diff = mean(a) - mean(b)
     se = math.sqrt(va + vb)
@@ -148,13 +154,37 @@ def paired(a, b):
     d = [x - y for x, y in zip(a, b)]
     n = len(d)
     m, s = mean(d), sd(d)
+    if n < 2:  # one seed: a difference, but no test
+        return m, NAN, NAN, NAN, NAN
     if not s > 0:
         return m, 0.0, (0.0 if m != 0 else 1.0), (0.0 if m > 0 else 1.0), float("nan")
     t = m / (s / math.sqrt(n))
     return m, t_quantile(0.975, n - 1) * s / math.sqrt(n), 2 * t_sf(abs(t), n - 1), t_sf(t, n - 1), m / s
 
 
+def fmt_mean(v):
+    """Mean ± 95 % half-width, or the mean alone for one run."""
+    return "%.2f" % mean(v) if len(v) < 2 else "%.2f ± %.2f" % (mean(v), ci95(v))
+
+
+def fmt_diff(d, hw):
+    """A difference with its 95 % interval, or with 'n/a' where one seed gives no interval."""
+    if math.isnan(hw):
+        return "%+.2f (n/a)" % d
+    return "%+.2f (%+.2f .. %+.2f)" % (d, d - hw, d + hw)
+
+
+def fmt_ci(d, hw):
+    return "no interval from one seed" if math.isnan(hw) else "95 %% CI %+.2f .. %+.2f" % (d - hw, d + hw)
+
+
+def fmt_dz(dz):
+    return "n/a" if math.isnan(dz) else "%+.2f" % dz
+
+
 def fmt_p(p):
+    if math.isnan(p):
+        return "n/a"
     return "< 0.0001" if p < 0.0001 else "%.4f" % p
 
 
@@ -200,13 +230,13 @@ def table(runs, sets, base, labels, title):
     bc = runs[base][0] if base in runs else None
     for s in sets:
         cer, wer = runs[s]
-        row = "| %s | %.2f ± %.2f | %.2f ± %.2f |" % (label_of(s, labels), mean(cer), ci95(cer), mean(wer), ci95(wer))
+        row = "| %s | %s | %s |" % (label_of(s, labels), fmt_mean(cer), fmt_mean(wer))
         if bc is None or s == base:
             row += " — | — | — | — | — |"
         else:
             d, hw, p2, _, dz = paired(cer, bc)
-            row += " %+.2f (%+.2f .. %+.2f) | %+.1f %% | %+.2f | %s | %s |" % (
-                d, d - hw, d + hw, 100 * d / mean(bc), dz, fmt_p(p2), fmt_p(welch(cer, bc)[2]))
+            row += " %s | %+.1f %% | %s | %s | %s |" % (
+                fmt_diff(d, hw), 100 * d / mean(bc), fmt_dz(dz), fmt_p(p2), fmt_p(welch(cer, bc)[2]))
         out.append(row)
     out.append("")
     out.append("Per-run CER (seeds in order): " + "; ".join(
@@ -223,11 +253,11 @@ def dose_check(runs, chain, alpha, labels):
     last, first = runs[chain[-1]][0], runs[chain[0]][0]
     d, hw, _, p1, _ = paired(last, first)
     ok = rising and p1 < alpha
-    steps = " < ".join("%s %.2f" % (label_of(s, labels), m) for s, m in zip(chain, means))
-    return ok, ["Dose-response (%s): %s; CER rises at every step: %s; %s vs %s %+.2f points paired by seed (95 %% CI "
-                "%+.2f .. %+.2f), one-sided paired t p = %s (Welch, unpaired: %s): **%s** (needs a rise at every step "
+    steps = " -> ".join("%s %.2f" % (label_of(s, labels), m) for s, m in zip(chain, means))
+    return ok, ["Dose-response (%s): %s; CER rises at every step: %s; %s vs %s %+.2f points paired by seed (%s), "
+                "one-sided paired t p = %s (Welch, unpaired: %s): **%s** (needs a rise at every step "
                 "and p < %g)" % (" -> ".join(chain), steps, "yes" if rising else "NO", label_of(chain[-1], labels),
-                                 label_of(chain[0], labels), d, d - hw, d + hw, fmt_p(p1), fmt_p(welch(last, first)[3]),
+                                 label_of(chain[0], labels), d, fmt_ci(d, hw), fmt_p(p1), fmt_p(welch(last, first)[3]),
                                  "PASS" if ok else "FAIL", alpha)]
 
 
