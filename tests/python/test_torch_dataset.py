@@ -65,8 +65,10 @@ class FarField(unittest.TestCase):
     def test_example_script_runs(self):
         src = os.environ.get("TSRIR_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
         opts = [o for o in program_options(self.dir) if not o.startswith("--num-replications")]
-        args = [sys.executable, os.path.join(src, "examples/python/farfield_dataloader.py"), self.dir + "/in",
-                "--num-workers", "4", "--epochs", "2", "--batch-size", "2"] + opts
+        # As README prints it: options with their values as separate words, the data dir last.
+        words = [w for o in opts for w in (o.split("=", 1) if o.startswith("--") and "=" in o else [o])]
+        args = [sys.executable, os.path.join(src, "examples/python/farfield_dataloader.py"),
+                "--num-workers", "4", "--epochs", "2", "--batch-size", "2"] + words + [self.dir + "/in"]
         out = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
         self.assertEqual(out.returncode, 0, out.stderr)
         self.assertIn("epoch 1: 6 utterances", out.stdout)
