@@ -26,6 +26,11 @@ except ImportError:  # pragma: no cover
 
 
 class FarFieldDataset(_Base):
+    """A map-style dataset of far-field copies: len = copies x recordings; item i is a dict
+    {"id": reverberate-data's new id, "recording", "copy", "fs": int Hz, "audio": float32 tensor
+    (samples,)} (numpy without torch). augmenter: a tsrir.Augmenter; copies: per recording and epoch;
+    set_epoch(e) moves to copies e*copies+1 .. e*copies+copies."""
+
     def __init__(self, augmenter, copies=1):
         if copies < 1:
             raise _tsrir.Error("copies must be >= 1")
@@ -62,7 +67,8 @@ class FarFieldDataset(_Base):
 
 
 def pad_collate(items):
-    """Batches items of different lengths: audio zero-padded to the longest, with lengths."""
+    """Batches items of different lengths: {"id": [str], "audio": float32 (batch, max samples), zero-padded,
+    "lengths": int64 (batch,) samples, "fs": int Hz}."""
     lengths = [len(i["audio"]) for i in items]
     audio = torch.zeros(len(items), max(lengths))
     for row, i in enumerate(items):
