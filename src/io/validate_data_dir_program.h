@@ -21,6 +21,7 @@ struct ValidateDataDirOptions {
 
 // The problem "mixed sample rates: ..." when the recordings of `wav_scp` (files; pipes too with
 // `probe_pipes`) are not all at one rate, naming each rate, its count and an example; "" otherwise.
+// Recordings that cannot be read are left out (logged): Kaldi's checks are of the tables.
 std::string mixed_sample_rates(const std::string& dir, const std::map<std::string, std::string>& wav_scp,
                                bool probe_pipes);
 
