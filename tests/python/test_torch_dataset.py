@@ -52,6 +52,16 @@ class FarField(unittest.TestCase):
                 seen.add(item["id"])
         self.assertEqual(seen, set(self.wav_scp))  # copies 1..4 of every recording, each once
 
+    def test_arguments_are_checked_by_name(self):
+        augmenter = tsrir.Augmenter(**settings(self.dir))
+        with self.assertRaisesRegex(TypeError, "copies: expected an integer"):
+            FarFieldDataset(augmenter, copies="2")
+        with self.assertRaisesRegex(ValueError, "copies: must be >= 1"):
+            FarFieldDataset(augmenter, copies=0)
+        with self.assertRaisesRegex(ValueError, "epoch: must be >= 0"):
+            FarFieldDataset(augmenter).set_epoch(-1)
+        self.assertEqual(FarFieldDataset(augmenter, copies=np.int64(2)).copies, 2)
+
     def test_batches(self):
         dataset = FarFieldDataset(tsrir.Augmenter(**settings(self.dir)))
         loader = torch.utils.data.DataLoader(dataset, batch_size=4, num_workers=2, collate_fn=pad_collate)
