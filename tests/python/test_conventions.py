@@ -9,6 +9,8 @@ import warnings
 
 from tsrir_testlib import np, program, run, speech_like, temp_dir, write_text, write_wav16
 import tsrir
+import tsrir.data
+import tsrir.manifests
 
 FS = 16000
 
@@ -168,6 +170,17 @@ class Documented(unittest.TestCase):
             doc = inspect.getdoc(obj) or ""
             with self.subTest(name=name):
                 self.assertGreater(len(doc), 40, "%s has no real docstring" % name)
+        # The submodules' public functions and the public methods of their classes too.
+        for module in (tsrir, tsrir.data, tsrir.manifests):
+            for name, obj in vars(module).items():
+                if name.startswith("_") or not callable(obj) or not getattr(obj, "__module__", "").startswith("tsrir"):
+                    continue
+                members = [(name, obj)]
+                if inspect.isclass(obj) and not issubclass(obj, BaseException):
+                    members += [(name + "." + m, f) for m, f in vars(obj).items() if not m.startswith("_") and callable(f)]
+                for full, f in members:
+                    with self.subTest(name=module.__name__ + "." + full):
+                        self.assertGreater(len(inspect.getdoc(f) or ""), 30, "%s has no real docstring" % full)
         for name in ("simulate", "reverberate", "metrics", "resample", "read_audio", "eq_apply"):
             doc = inspect.getdoc(getattr(tsrir, name))
             with self.subTest(name=name):
