@@ -7,6 +7,11 @@
 # The extension comes from this build tree (TSRIR_BUILD_DIR, setup.py checks that it is this
 # source's and built for this interpreter's ABI) so that the test costs seconds, not a rebuild;
 # the fresh-tree path of setup.py is the same code with a configure step before it.
+# The source distribution (`python3 -m build --no-isolation` without --wheel makes it first and
+# builds the wheel from it): it must hold every file git tracks that the module's CMake build reads
+# (MANIFEST.in), and a CMake tree configures from it unpacked as setup.py configures one; building
+# that tree is the fresh-tree path (minutes), not run here. (Checked: without MANIFEST.in the sdist
+# lacks 281 of those files and this fails.)
 # Env (set by CTest): TSRIR_BUILD_DIR, TSRIR_PYTHON (the python3 the module is built for).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -61,3 +66,30 @@ wheels=("$tmp"/dist/tsrir-*.whl)
 (cd "$tmp/outside" && "$tmp/wheel-venv/bin/pip" install "${wheels[0]}") >"$tmp/pip2.log" 2>&1 ||
   { tail -n 30 "$tmp/pip2.log" >&2; echo "FAIL: pip install ${wheels[0]##*/}" >&2; exit 1; }
 check_venv "$tmp/wheel-venv" "wheel ${wheels[0]##*/} built and installed into another venv ($((SECONDS - start)) s)"
+
+start=$SECONDS
+# From a copy of the files git knows (tracked and untracked-not-ignored): an old
+# src/python/tsrir.egg-info/SOURCES.txt in the tree would otherwise add what MANIFEST.in no longer does.
+sdist_src=$src
+if command -v git >/dev/null && git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  sdist_src=$tmp/source-copy
+  mkdir "$sdist_src"
+  (cd "$src" && git ls-files -z --cached --others --exclude-standard | xargs -0 tar --ignore-failed-read -cf - 2>/dev/null) | tar -xf - -C "$sdist_src"
+fi
+(cd "$sdist_src" && "$py" -m build --no-isolation --sdist --outdir "$tmp/dist" .) >"$tmp/sdist.log" 2>&1 ||
+  { tail -n 30 "$tmp/sdist.log" >&2; echo "FAIL: python3 -m build --no-isolation --sdist" >&2; exit 1; }
+sdists=("$tmp"/dist/tsrir-*.tar.gz)
+[ ${#sdists[@]} -eq 1 ] && [ -f "${sdists[0]}" ] || { echo "FAIL: no sdist in $tmp/dist" >&2; exit 1; }
+mkdir "$tmp/sdist"
+tar -xzf "${sdists[0]}" -C "$tmp/sdist" --strip-components=1
+if command -v git >/dev/null && git -C "$src" rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  missing=$(cd "$src" && git ls-files CMakeLists.txt setup.py pyproject.toml src bin conf examples |
+            while read -r f; do [ -e "$tmp/sdist/$f" ] || echo "$f"; done)
+  [ -z "$missing" ] || { echo "FAIL: the sdist lacks files git tracks: $(echo $missing | head -c 400)" >&2; exit 1; }
+fi
+cmake -S "$tmp/sdist" -B "$tmp/sdist-build" -DTSRIR_WITH_TORCH=OFF -DTSRIR_BUILD_TESTS=OFF \
+      -DPython3_EXECUTABLE="$py" >"$tmp/sdist-cmake.log" 2>&1 ||
+  { tail -n 30 "$tmp/sdist-cmake.log" >&2; echo "FAIL: CMake cannot configure the sdist ${sdists[0]##*/}" >&2; exit 1; }
+grep -q '^TSRIR_PYTHON_MODULE:INTERNAL=ON' "$tmp/sdist-build/CMakeCache.txt" ||
+  { echo "FAIL: the sdist's CMake tree does not build the Python module" >&2; exit 1; }
+echo "ok: sdist ${sdists[0]##*/} holds the tracked sources and configures the module ($((SECONDS - start)) s)"
