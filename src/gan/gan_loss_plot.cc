@@ -43,7 +43,8 @@ std::vector<double> linear_ticks(double lo, double hi, int wanted) {
 }
 
 // Ticks of a log10 axis spanning [lo, hi] (in log10 units): the decades, with 2 and 5 between them
-// when fewer than three decades are spanned, so that even a narrow range has several labelled ticks.
+// when fewer than three decades are spanned; a range too narrow for three of those (early training:
+// 3.98 .. 5.4, say) gets round values instead (4, 4.5, 5), not labels like 10^0.6 = 3.98.
 std::vector<double> log_ticks(double lo, double hi) {
   std::vector<double> ticks;
   const bool fine = hi - lo < 3;
@@ -53,7 +54,9 @@ std::vector<double> log_ticks(double lo, double hi) {
       if (t >= lo - 1e-9 && t <= hi + 1e-9) ticks.push_back(t);
     }
   }
-  if (ticks.size() < 2) ticks = linear_ticks(lo, hi, 3);  // within one 1-2-5 step: plain ticks in log units
+  if (ticks.size() >= 3) return ticks;
+  ticks.clear();
+  for (double v : linear_ticks(std::pow(10.0, lo), std::pow(10.0, hi), 4)) ticks.push_back(std::log10(v));
   return ticks;
 }
 
