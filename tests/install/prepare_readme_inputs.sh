@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The inputs README.md's examples take for granted, written into the scratch directory <dir> (the
 # examples' working directory) with the programs on PATH: real.scp / rooms000.txt (the 34 R3VIVAL
-# RIRs of condition 000, docs/results/make_r3vival_inputs.sh), real/rir_list, a Kaldi data dir
+# RIRs of condition 000, docs/results/make_r3vival_inputs.sh), real/rir_list and real_train/rir_list, a Kaldi data dir
 # data/clean (the 5 LibriSpeech utterances of ../shared/data, two of them as flac pipes), speech.wav,
 # noise.wav (10 s of a real rain recording, 16 kHz mono), noise.scp, noise_list, rirs/ (two
 # simulated rooms for the Python example). Without ../shared/data: stand-ins (rooms.txt written
@@ -47,6 +47,9 @@ awk '{n = split($1, p, "-"); print $1, p[1] "-" p[2]}' data/clean/wav.scp >data/
 awk '{a[$2] = a[$2] " " $1} END {for (s in a) print s a[s]}' data/clean/utt2spk | LC_ALL=C sort >data/clean/spk2utt
 rm -f wav.scp.u text.u
 awk '{print "--rir-id " $1 " --room-id r3vival " $2}' real.scp >real/rir_list
+# real_train/rir_list: the demo's training RIRs in rir-perturb's examples; here the same real RIRs.
+mkdir -p real_train
+cp real/rir_list real_train/rir_list
 echo "rain $d/noise.wav" >noise.scp
 { echo "--noise-id rain --noise-type point-source --bg-fg-type background $d/noise.wav"
   echo "--noise-id rain_iso --noise-type isotropic --bg-fg-type background --room-linkage r3vival $d/noise.wav"; } >noise_list
