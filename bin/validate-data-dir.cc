@@ -10,10 +10,12 @@ int main(int argc, char** argv) {
         "wav.scp, utt2spk and spk2utt present, every table sorted and unique under LC_ALL=C,\n"
         "utt2spk also sorted by speaker and agreeing with spk2utt, segments (4 fields, end > start,\n"
         "known recordings), text covering every utterance (unless --no-text), utt2uniq and reco2dur\n"
-        "covering theirs, no '~' in wav.scp. Prints each problem on stderr; exit status 1 if any.\n"
+        "covering theirs, no '~' in wav.scp; then (tsrir) one sample rate for every recording (files\n"
+        "from their headers; pipes with --probe-pipes). Prints each problem on stderr; exit status 1\n"
+        "if any.\n"
         "Features are never checked (--no-feats is accepted for the same command line as Kaldi's).\n"
         "\n"
-        "Usage: validate-data-dir [--no-text] [--no-feats] <data-dir>\n"
+        "Usage: validate-data-dir [--no-text] [--no-feats] [--check-rates=false] [--probe-pipes] <data-dir>\n"
         "Example:\n"
         "  validate-data-dir --no-feats data/test_clean_rvb_real\n");
     tsrir::ValidateDataDirOptions options;

@@ -22,7 +22,8 @@ const char* kUsage =
     "Command-line syntax is Kaldi's own (not the other tsrir programs'): options come before the\n"
     "two positional arguments and only in the form --name=value (a bare --name means true for a\n"
     "boolean; `--name value` is an error), names are case-insensitive and '_' equals '-'.\n"
-    "Exit status: 0 on success, 1 for a wrong number of arguments, 255 for any other error.\n"
+    "Exit status: 0 on success, 1 for any error (Kaldi's binary exits 255; its scripts only test for\n"
+    "non-zero).\n"
     "\n"
     "Semantics (Kaldi's): the SNR of each additive signal is relative to the energy of the speech\n"
     "convolved with the early part of the RIR (1 ms before to 50 ms after its largest sample); each\n"
@@ -52,9 +53,18 @@ int main(int argc, char** argv) {
   // One process per utterance in Kaldi's pipes: page faults are a large part of its cost.
   tsrir::use_huge_pages_for_heap(64u << 20);
   tsrir::WavReverberateOptions options;
+  const tsrir::KaldiOptionParser* parser = nullptr;
   return tsrir::run_kaldi_program(
-      "wav-reverberate", kUsage, argc, argv, 2, [&](tsrir::KaldiOptionParser& po) { options.Register(&po); },
+      "wav-reverberate", kUsage, argc, argv, 2,
+      [&](tsrir::KaldiOptionParser& po) {
+        options.Register(&po);
+        parser = &po;
+      },
       [&](const std::vector<std::string>& args) {
+        // A multichannel input whose channel was not chosen gets a warning naming the one used.
+        options.input_channel_given = parser->given("input-wave-channel");
+        options.rir_channel_given = parser->given("rir-channel");
+        options.noise_channel_given = parser->given("noise-channel");
         tsrir::run_wav_reverberate(options, args[0], args[1]);
         return 0;
       });

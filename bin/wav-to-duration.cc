@@ -15,12 +15,13 @@ const char* kUsage =
     "\n"
     "Input: scp:<wav.scp> whose entries are files, '-' or pipes ('<command> |'); any format\n"
     "libsndfile reads (Kaldi: 16-bit WAV only). Files are measured from their header; pipes are\n"
-    "read to the end (Kaldi reads only their header), so a streamed WAV from a pipe gets its true\n"
-    "duration instead of an error.\n"
+    "read to the end (Kaldi stops them after the header, which cuts the command off: flac then\n"
+    "prints an error), and a command that fails is an error; a streamed WAV from a pipe gets its\n"
+    "true duration instead of an error.\n"
     "Output: Kaldi's float archive, 'ark,t:' text lines '<key> <seconds> ' (7 significant digits)\n"
     "or 'ark:' binary; a file is written under a temporary name and renamed when complete.\n"
-    "Exit status (Kaldi's): 0 when at least one duration was written, 1 when none (or wrong\n"
-    "arguments), 255 on an error, which names the scp line.\n";
+    "Exit status: 0 when at least one duration was written, 1 when none, on wrong arguments and on\n"
+    "an error, which names the scp line (Kaldi's binary exits 255 on an error).\n";
 
 }  // namespace
 

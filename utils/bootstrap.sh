@@ -10,7 +10,9 @@ packages=(build-essential cmake ninja-build pkg-config
           libtorch-dev libopenblas0-pthread libsndfile1-dev libsox-dev libsox-fmt-all sox
           libfftw3-dev libeigen3-dev libboost-program-options-dev libgtest-dev
           espeak-ng flac bible-kjv   # bible-kjv: the TTS corpus's sentences (stage 8 --asr proxy)
-          python3-dev pybind11-dev python3-numpy python3-torch)
+          python3-dev pybind11-dev python3-numpy python3-torch
+          # pip install . / python3 -m build (tests/install/venv_install_test.sh, README "Installing")
+          python3-venv python3-pip python3-setuptools python3-wheel python3-build)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -23,7 +23,7 @@
 #   7  far-field data dirs (reverberate-data): one training set per RIR set, dev and test sets
 #      with real RIRs; real noise at a random offset, looped, SNR 1-2 dB; validated
 #   8  Table 2, one recogniser per training set, decoded on real-RIR far-field test speech:
-#      --asr kaldi (default when KALDI_ROOT is set): chain TDNN training and decoding through
+#      --asr kaldi (default when KALDI_ROOT is set, except for --demo): chain TDNN training and decoding through
 #      Kaldi's scripts (local/kaldi/run_asr.sh), WERs in the paper's Table 2 layout -> RESULTS.md;
 #      --asr proxy (default without Kaldi): local/asr/run_proxy.sh, a TTS corpus (train/test voices)
 #      reverberated with each training set + real noise, a compact CTC recogniser per set and seed
@@ -81,8 +81,8 @@ rir_sets="gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq gas_ext"
 train_sets="clean real gas gas_eq gas_gsr gas_eq_gsr gas_gsr_eq gas_ext"   # stages 7-8
 kaldi_stage=0         # local/kaldi/run_asr.sh --stage
 kaldi_opts=""         # more local/kaldi/run_asr.sh options, e.g. "--stop-after gmm --lm-text <file>"
-asr=""                # stage 8: kaldi | proxy (default: kaldi when KALDI_ROOT is set; else proxy for
-                      # --demo, and for the full experiment a skip with a message)
+asr=""                # stage 8: kaldi | proxy (default: proxy for --demo, never downloading; else kaldi
+                      # when KALDI_ROOT is set, and for the full experiment a skip with a message)
 asr_seeds="0"         # proxy: one model per training set and seed
 asr_num_threads=1     # proxy: LibTorch threads per model (1: threads spin-wait on a busy machine)
 asr_jobs=2            # proxy: models trained at once
@@ -103,8 +103,9 @@ help_message="Usage: $0 [options]   (see the top of $0 for the stages)
 e.g.: $0 --demo
       $0 --stage 2 --stop-stage 6 --nj 32 --gan-model exp/tsrirgan
 Environment:
-  KALDI_ROOT  a compiled Kaldi checkout: enables stage 8 (chain TDNN training and decoding), Kaldi's
-              run.pl/queue.pl/slurm.pl and validate_data_dir.sh; unset = stages 0-7 only
+  KALDI_ROOT  a compiled Kaldi checkout: enables stage 8's Kaldi training and decoding (the default
+              of the full experiment; the demo uses the proxy unless --asr kaldi, then with an offline
+              LM), Kaldi's run.pl/queue.pl/slurm.pl and validate_data_dir.sh
   TSRIR_CMD   how parallel jobs run (cmd.sh): run.pl (default with Kaldi), queue.pl (SGE; reads
               conf/queue.conf), slurm.pl (reads conf/slurm.conf); without Kaldi local/run_jobs.sh.
               A program run with --num-threads N asks the queue for N slots (--num-threads N to \$cmd);
@@ -155,7 +156,11 @@ fi
 
 . ./cmd.sh
 . ./path.sh
-if [ -n "${KALDI_ROOT:-}" ]; then . "$KALDI_ROOT/egs/wsj/s5/utils/parse_options.sh"; else . ./local/parse_options.sh; fi
+if [ -n "${KALDI_ROOT:-}" ] && [ -f "$KALDI_ROOT/egs/wsj/s5/utils/parse_options.sh" ]; then
+  . "$KALDI_ROOT/egs/wsj/s5/utils/parse_options.sh"
+else
+  . ./local/parse_options.sh
+fi
 [ $# -eq 0 ] || { echo "$0: unexpected arguments: $*" >&2; echo "$help_message" >&2; exit 1; }
 case $demo in true|false) ;; *) echo "$0: --demo must be true or false" >&2; exit 1 ;; esac
 case $demo_size in small|tiny) ;; *) echo "$0: --demo-size must be small or tiny, got '$demo_size'" >&2; exit 1 ;; esac
@@ -171,6 +176,28 @@ shared_data=$(readlink -m "$shared_data")
 if [ "$demo" = true ]; then train_set=train_clean; else train_set=train_clean_460; fi
 rirs=$data/rirs
 conf=$(readlink -f ../../conf)   # the programs' settings as in the paper (conf/<program>.conf)
+
+# Stage 8's recogniser, decided (and logged below) before any stage runs. The demo promises
+# embedded data and no downloads, also in a Kaldi user's shell where KALDI_ROOT is exported: it
+# uses the proxy unless --asr kaldi is asked, and Kaldi then builds its LM offline from the demo's
+# own training transcripts (run_asr.sh --lm-text) instead of downloading openslr's.
+if [ -z "$asr" ]; then
+  if [ "$demo" = true ]; then asr=proxy; elif [ -n "${KALDI_ROOT:-}" ]; then asr=kaldi; else asr=skip; fi
+fi
+demo_lm_text=""
+if [ "$demo" = true ] && [ "$asr" = kaldi ] && [[ " $kaldi_opts " != *" --lm-text "* ]]; then
+  demo_lm_text=$exp/kaldi/lm_text.txt   # written at stage 8 from $data/$train_set/text
+  kaldi_opts="$kaldi_opts --lm-text $demo_lm_text"
+fi
+case $asr in
+  proxy) asr_plan="the proxy recogniser (asr-train/asr-decode; no Kaldi, no downloads)" ;;
+  kaldi) asr_plan="Kaldi (local/kaldi/run_asr.sh)"
+         if [ -n "$demo_lm_text" ]; then
+           asr_plan="Kaldi (local/kaldi/run_asr.sh, LM built offline from the demo's transcripts: --lm-text $demo_lm_text)"
+         fi ;;
+  skip) asr_plan="nothing (KALDI_ROOT is not set; --asr proxy runs the proxy recogniser)" ;;
+  *) echo "$0: --asr must be kaldi or proxy, got '$asr'" >&2; exit 1 ;;
+esac
 
 # ---- helpers ----
 t_stage=$SECONDS
@@ -231,6 +258,7 @@ write_results() {
 check_data_dir() { local/check_data_dir.sh "$1" || die "$1 is not a valid Kaldi data dir"; }
 
 log "$( [ "$demo" = true ] && echo "demo ($demo_size)" || echo "full experiment"): stages $stage..$stop_stage, data=$data exp=$exp"
+log "stage 8 uses $asr_plan"
 
 # ---------------------------------------------------------------------------------------------
 if [ $stage -le 0 ] && [ $stop_stage -ge 0 ]; then
@@ -597,9 +625,6 @@ fi
 
 # ---------------------------------------------------------------------------------------------
 if [ $stage -le 8 ] && [ $stop_stage -ge 8 ]; then
-  if [ -z "$asr" ]; then
-    if [ -n "${KALDI_ROOT:-}" ]; then asr=kaldi; elif [ "$demo" = true ]; then asr=proxy; else asr=skip; fi
-  fi
   case $asr in
     skip)
       begin_stage 8 "Table 2"
@@ -612,6 +637,11 @@ if [ $stage -le 8 ] && [ $stop_stage -ge 8 ]; then
         begin_stage 8 "Kaldi chain TDNN training and decoding per training set, Table 2"
       fi
       [ -n "${KALDI_ROOT:-}" ] || die "stage 8 --asr kaldi: KALDI_ROOT is not set (set it to a compiled Kaldi, or use --asr proxy)"
+      if [ -n "$demo_lm_text" ]; then
+        require "$data/$train_set/text"
+        mkdir -p "$(dirname "$demo_lm_text")"
+        cut -d' ' -f2- "$data/$train_set/text" >"$demo_lm_text"
+      fi
       for s in $train_sets; do
         if [ "$s" = clean ]; then tr=$data/$train_set; else tr=$data/${train_set}_rvb_$s; fi
         require "$tr/wav.scp" "$data/test_clean_rvb_real/wav.scp" "$data/dev_clean_rvb_real/wav.scp"

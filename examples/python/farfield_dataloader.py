@@ -3,13 +3,14 @@
 items are reverberate-data's far-field copies, made in the loader's worker processes instead of
 being written to disk first.
 
-Example (the lists are reverberate-data's; any Kaldi data dir with a wav.scp):
-  PYTHONPATH=build/python examples/python/farfield_dataloader.py \
+Example (the lists are reverberate-data's; any Kaldi data dir with a wav.scp; options and the
+data dir in any order):
+  python3 examples/python/farfield_dataloader.py \
       --rir-set-parameters "0.5, data/sim_rirs/rir_list" --noise-set-parameters data/noise/noise_list \
       --random-seed 7 --copies 1 --num-workers 4 --epochs 2 data/train_clean
 
 Options other than --copies, --epochs, --num-workers and --batch-size are reverberate-data's own
-(those that decide what happens to a recording), with its defaults.
+(those that decide what happens to a recording), with its defaults (--help lists them).
 
 Each batch is padded audio + lengths (tsrir.data.pad_collate). Epoch e uses reverberate-data's
 copies e*C+1..e*C+C, so every epoch sees new rooms and noises and a given (seed, epoch, id) always
@@ -29,46 +30,41 @@ def one_thread(_worker_id):
     torch.set_num_threads(1)
 
 
-def reverberate_data_options(words):
-    """reverberate-data's own options ("--name=value" or "--name value") as Augmenter keywords,
-    typed by the library's defaults (tsrir.Augmenter.option_defaults())."""
-    defaults = tsrir.Augmenter.option_defaults()
-    options, i = {}, 0
-    while i < len(words):
-        word = words[i]
-        if not word.startswith("--"):
-            raise SystemExit("unexpected argument %r" % word)
-        name, eq, value = word[2:].partition("=")
-        if not eq:
-            i += 1
-            if i == len(words):
-                raise SystemExit("--%s needs a value" % name)
-            value = words[i]
-        key = "seed" if name == "random-seed" else name.replace("-", "_")
-        if key not in defaults:
-            raise SystemExit("unknown option --%s (reverberate-data options here: %s)"
-                             % (name, ", ".join(sorted(defaults))))
-        default = defaults[key]
+def parse_bool(text):
+    if text.lower() in ("true", "1", "yes"):
+        return True
+    if text.lower() in ("false", "0", "no"):
+        return False
+    raise argparse.ArgumentTypeError("expected true or false, got %r" % text)
+
+
+def add_reverberate_data_options(parser):
+    """reverberate-data's own options, typed by the library's defaults (tsrir.Augmenter.option_defaults()):
+    registered with argparse so that their values and the data dir may come in any order."""
+    group = parser.add_argument_group("reverberate-data's options (its defaults; see reverberate-data --help)")
+    for key, default in sorted(tsrir.Augmenter.option_defaults().items()):
+        flags = ["--random-seed", "--seed"] if key == "seed" else ["--" + key.replace("_", "-")]
         if isinstance(default, list):
-            options.setdefault(key, []).append(value)
+            group.add_argument(*flags, dest=key, action="append", default=None, metavar="VALUE",
+                               help="repeatable")
         elif isinstance(default, bool):
-            options[key] = value.lower() in ("true", "1", "yes")
+            group.add_argument(*flags, dest=key, type=parse_bool, default=None, metavar="true|false",
+                               help="default %s" % str(default).lower())
         else:
-            options[key] = type(default)(value)
-        i += 1
-    return options
+            group.add_argument(*flags, dest=key, type=type(default), default=None, help="default %r" % (default,))
+    return sorted(tsrir.Augmenter.option_defaults())
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
-                                epilog="Any other --option is reverberate-data's (see reverberate-data --help).")
-    p.add_argument("data_dir")
-    p.add_argument("--copies", type=int, default=1)
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("data_dir", help="a Kaldi data dir (its wav.scp; reco2dur when present)")
+    p.add_argument("--copies", type=int, default=1, help="far-field copies per recording and epoch")
     p.add_argument("--epochs", type=int, default=1)
-    p.add_argument("--num-workers", type=int, default=4)
+    p.add_argument("--num-workers", type=int, default=4, help="DataLoader worker processes")
     p.add_argument("--batch-size", type=int, default=8)
-    args, rest = p.parse_known_args(argv)
-    options = reverberate_data_options(rest)
+    keys = add_reverberate_data_options(p)
+    args = p.parse_args(argv)
+    options = {k: getattr(args, k) for k in keys if getattr(args, k) is not None}
     options.setdefault("prefix", "rvb")
 
     augmenter = tsrir.Augmenter(data_dir=args.data_dir, **options)

@@ -116,6 +116,12 @@ void KaldiOptionParser::set_option(const std::string& key, const std::string& va
   } catch (const Error& err) {
     throw Error("Invalid option " + original + ": " + err.what());
   }
+  e->given = true;
+}
+
+bool KaldiOptionParser::given(const std::string& name) const {
+  auto it = index_.find(normalize_name(name));
+  return it != index_.end() && entries_[it->second].given;
 }
 
 void KaldiOptionParser::read_config_file(const std::string& path) {
@@ -240,25 +246,21 @@ std::string KaldiOptionParser::escape_for_echo(const std::string& word) {
 int run_kaldi_program(const std::string& name, const std::string& usage, int argc, const char* const* argv,
                       size_t num_positionals, const std::function<void(KaldiOptionParser&)>& define,
                       const std::function<int(const std::vector<std::string>&)>& body) {
-  bool finished = false;  // false after an exception: the status is then run_program's error code
-  const int status = run_program(name, [&]() {
+  // Every error exits 1, as every tsrir program does (Kaldi's binaries exit 255; its scripts only
+  // test for non-zero).
+  return run_program(name, [&]() {
     KaldiOptionParser po(usage);
     define(po);
     if (po.parse(argc, argv) == KaldiOptionParser::Outcome::kHelp) {
       std::cout << po.usage_text();
-      finished = true;
       return 0;
     }
     if (po.positionals().size() != num_positionals) {
       std::cerr << po.usage_text();
-      finished = true;
       return 1;
     }
-    const int rc = body(po.positionals());
-    finished = true;
-    return rc;
+    return body(po.positionals());
   });
-  return status != 0 && !finished ? 255 : status;
 }
 
 }  // namespace tsrir

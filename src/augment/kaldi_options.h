@@ -33,6 +33,8 @@ class KaldiOptionParser : public OptionsItf {
 
   const std::vector<std::string>& positionals() const { return positionals_; }
   int verbose() const { return verbose_; }
+  // Whether option `name` was set by the command line or a --config file (not left at its default).
+  bool given(const std::string& name) const;
   // Usage text followed by the option table (Kaldi layout: "Options:" then "Standard options:").
   std::string usage_text() const;
 
@@ -46,6 +48,7 @@ class KaldiOptionParser : public OptionsItf {
     bool standard = false;
     std::vector<std::string> aliases;
     bool cleared = false;  // a repeated option: its default list was replaced by the first value
+    bool given = false;    // set by the command line or a config file
   };
   void add_entry(OptionSpec spec, bool standard);
   Entry* find(const std::string& normalized_key);
@@ -66,7 +69,8 @@ class KaldiOptionParser : public OptionsItf {
 // The frame of a Kaldi drop-in program: `define` registers the options; argv is parsed; --help
 // prints the usage to stdout (exit 0); a positional count other than `num_positionals` prints it to
 // stderr (exit 1); else `body` runs with the positionals and its result is the exit status. An
-// error (Error, std::exception) is reported on stderr and exits 255, as Kaldi's binaries (-1) do.
+// error (Error, std::exception) is reported on stderr and exits 1, as every tsrir program does
+// (Kaldi's binaries exit 255; Kaldi's scripts only test for non-zero).
 int run_kaldi_program(const std::string& name, const std::string& usage, int argc, const char* const* argv,
                       size_t num_positionals, const std::function<void(KaldiOptionParser&)>& define,
                       const std::function<int(const std::vector<std::string>&)>& body);

@@ -14,6 +14,7 @@
 #include "augment/augment_plan.h"
 #include "augment/augment_sources.h"
 #include "augment/noise_signal.h"
+#include "augment/rate_policy.h"
 #include "augment/reverberate_stream.h"
 #include "augment/sampling.h"
 #include "augment/wav_duration.h"
@@ -195,9 +196,11 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
   opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
   opts->Register("random-seed", &random_seed, "random seed (any integer; all draws derive from it)");
   opts->RegisterAlias("seed", "random-seed");
-  opts->Register("source-sampling-rate", &source_sampling_rate_hz,
-                 "if > 0, the speech's rate in Hz (checked with --write-wavs; RIRs and noises are always resampled "
-                 "to the speech's rate)");
+  opts->Register("sample-rate", &source_sampling_rate_hz,
+                 "the data dir's rate in Hz: RIRs and noises are resampled to it (Kaldi's --source-sampling-rate) "
+                 "and so is a recording at another rate (in a pipe: tsrir's wav-reverberate --sample-rate); "
+                 "0 = the rate of the first recording, and a recording at another rate is an error");
+  opts->RegisterAlias("source-sampling-rate", "sample-rate");
   opts->Register("rir-smoothing-weight", &rir_smoothing_weight, "RIR probabilities mixed with uniform (Kaldi)");
   opts->Register("noise-smoothing-weight", &noise_smoothing_weight, "noise probabilities mixed with uniform (Kaldi)");
   opts->Register("write-wavs", &write_wavs, "write 16-bit wavs into this directory instead of pipes");
@@ -237,6 +240,9 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   const SnrSpec foreground_snrs = SnrSpec::parse(options.foreground_snrs, "--foreground-snrs");
   const SnrSpec background_snrs = SnrSpec::parse(options.background_snrs, "--background-snrs");
   const std::map<std::string, double> durations = recording_durations(in_dir, input, options.num_threads);
+  const auto& [first_id, first_rx] = *input.wav_scp.begin();
+  const DirSampleRate dir_rate(options.source_sampling_rate_hz, first_id, first_rx,
+                               in_dir + "/wav.scp: recording '" + first_id + "'");
 
   PlanOptions plan_options;
   plan_options.num_replications = options.num_replications;
@@ -296,6 +302,8 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
     pipe.reverb = options.reverb;
     pipe.tsrir_extensions = options.pipe_dialect == "tsrir" ||
                             (options.pipe_dialect == "auto" && is_tsrir_pipe_program(pipe.program));
+    if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
+    check_recording_rates(input.wav_scp, dir_rate, pipe.sample_rate_hz > 0, in_dir, options.num_threads);
     for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = format_pipe(plan, sources, pipe);
   } else {
     const std::string final_wav_dir = absolute_path(options.write_wavs);
@@ -325,17 +333,20 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
       const std::string where = in_dir + "/wav.scp: recording '" + plan.source_id + "'";
       const std::string wav_path = temp_wav_dir + "/" + plan.new_id + ".wav";
       SpeechInput speech = open_speech_input(plan.source_rx, options.max_in_memory_s, wav_path + ".input", where);
-      const double rate = speech.on_disk() ? probe_audio(speech.path).sample_rate_hz : speech.info.sample_rate_hz;
-      if (options.source_sampling_rate_hz > 0 && rate != options.source_sampling_rate_hz)
-        throw Error(where + ": sample rate " + format_double(rate) + " Hz, but --source-sampling-rate is " +
-                    format_double(options.source_sampling_rate_hz));
+      const AudioInfo speech_info = speech.on_disk() ? probe_audio(speech.path) : speech.info;
+      const double rate = dir_rate.rate_hz();
+      if (!speech.on_disk())
+        speech.channels = {dir_rate.speech_at_rate(std::move(speech.channels), speech_info.sample_rate_hz, where)};
+      else if (!dir_rate.accepts(speech_info.sample_rate_hz, where) || speech_info.channels > 1)
+        throw Error(where + ": longer than --max-in-memory-duration and at " + format_double(speech_info.sample_rate_hz) +
+                    " Hz with " + std::to_string(speech_info.channels) + " channel(s): only a mono recording at the " +
+                    "data dir's rate is reverberated in passes (resample or split it first)");
       std::shared_ptr<const PreparedRir> rir;
       auto load_rir = [&](long index) {
         const RirChoice& choice = sources.rirs[static_cast<size_t>(index)];
         return rir_cache.get({index, rate}, [&] {
-          std::vector<std::vector<float>> ch =
-              read_channels_at_rate(choice.rxfilename, rate, choice.where + " (RIR '" + choice.id + "')");
-          return PreparedRir(std::move(ch.at(0)), rate);
+          const std::string what = choice.where + " (RIR '" + choice.id + "')";
+          return PreparedRir(first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what), rate);
         });
       };
       if (plan.rir >= 0) rir = load_rir(plan.rir);
@@ -343,9 +354,8 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
       for (const PlannedNoise& planned : plan.noises) {
         const NoiseChoice& choice = sources.noises[static_cast<size_t>(planned.noise)];
         std::shared_ptr<const std::vector<float>> noise = noise_cache.get({planned.noise, rate}, [&] {
-          std::vector<std::vector<float>> ch =
-              read_channels_at_rate(choice.rxfilename, rate, choice.where + " (noise '" + choice.id + "')");
-          return std::move(ch.at(0));
+          const std::string what = choice.where + " (noise '" + choice.id + "')";
+          return first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what);
         });
         std::shared_ptr<const PreparedRir> noise_rir;
         if (planned.rir >= 0) noise_rir = load_rir(planned.rir);

@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include <sys/wait.h>
+
 #include "io/audio_io.h"
 #include "io/kaldi_table.h"
 #include "io/rxfile.h"
@@ -58,56 +60,87 @@ uint32_t le32(const std::vector<char>& b, size_t at) {
 
 }  // namespace
 
-std::optional<double> wav_header_duration_s(const std::vector<char>& bytes) {
+std::optional<WavHeaderInfo> wav_header_info(const std::vector<char>& bytes) {
   if (bytes.size() < 12 || std::memcmp(bytes.data(), "RIFF", 4) != 0 || std::memcmp(bytes.data() + 8, "WAVE", 4) != 0)
     return std::nullopt;
-  uint32_t rate = 0, block_align = 0;
+  WavHeaderInfo info;
+  uint32_t block_align = 0;
   for (size_t at = 12; at + 8 <= bytes.size();) {
     const uint32_t size = le32(bytes, at + 4);
     if (std::memcmp(bytes.data() + at, "fmt ", 4) == 0 && at + 8 + 16 <= bytes.size()) {
-      rate = le32(bytes, at + 12);
+      info.channels = static_cast<unsigned char>(bytes[at + 10]) | static_cast<unsigned char>(bytes[at + 11]) << 8;
+      info.sample_rate_hz = le32(bytes, at + 12);
       block_align = static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 20])) |
                     static_cast<uint32_t>(static_cast<unsigned char>(bytes[at + 21])) << 8;
     } else if (std::memcmp(bytes.data() + at, "data", 4) == 0) {
-      if (rate == 0 || block_align == 0 || size == 0 || size >= 0xFFFFFFF0u) return std::nullopt;
-      return static_cast<double>(size / block_align) / rate;
+      if (info.sample_rate_hz == 0 || block_align == 0) return std::nullopt;
+      if (size != 0 && size < 0xFFFFFFF0u)
+        info.duration_s = static_cast<double>(size / block_align) / info.sample_rate_hz;
+      return info;
     }
     at += 8 + size + (size & 1);
   }
   return std::nullopt;
 }
 
-double rx_duration_s(const std::string& rx_in, bool read_entire_file, const std::string& where) {
+std::optional<double> wav_header_duration_s(const std::vector<char>& bytes) {
+  const std::optional<WavHeaderInfo> info = wav_header_info(bytes);
+  return info ? info->duration_s : std::nullopt;
+}
+
+namespace {
+
+// A pipe's first `head_bytes` bytes; the rest is read to the end and discarded, so the command
+// finishes on its own, and a command that fails is an error.
+std::vector<char> pipe_head(const std::string& command, size_t head_bytes) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw Error("cannot start the command");
+  std::vector<char> head(head_bytes);
+  size_t got = 0;
+  while (got < head.size()) {
+    const size_t n = std::fread(head.data() + got, 1, head.size() - got, pipe);
+    if (n == 0) break;
+    got += n;
+  }
+  head.resize(got);
+  std::vector<char> rest(1 << 16);
+  while (std::fread(rest.data(), 1, rest.size(), pipe) > 0) {
+  }
+  const int status = pclose(pipe);
+  if (status != 0)
+    throw Error("the command '" + command + "' failed (exit status " +
+                std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status)) + ")");
+  return head;
+}
+
+}  // namespace
+
+RxAudioHeader rx_audio_header(const std::string& rx_in, bool read_entire_file, const std::string& where) {
   const std::string rx = trim(rx_in);
   try {
+    RxAudioHeader out;
     if (!read_entire_file && is_pipe_rxfilename(rx)) {
-      std::string command = rx.substr(0, rx.size() - 1);
-      FILE* pipe = popen(command.c_str(), "r");
-      if (!pipe) throw Error("cannot start the command");
-      std::vector<char> head(65536);
-      size_t got = 0;
-      while (got < head.size()) {
-        const size_t n = std::fread(head.data() + got, 1, head.size() - got, pipe);
-        if (n == 0) break;
-        got += n;
-      }
-      pclose(pipe);  // the command may die of SIGPIPE now, as under Kaldi's header-only reader
-      head.resize(got);
-      if (const std::optional<double> d = wav_header_duration_s(head)) return *d;
+      const std::optional<WavHeaderInfo> info = wav_header_info(pipe_head(rx.substr(0, rx.size() - 1), 65536));
+      if (info && info->duration_s) return {*info->duration_s, info->sample_rate_hz, info->channels};
     }
     if (read_entire_file || rx == "-" || is_pipe_rxfilename(rx)) {
       AudioInfo info;
       std::vector<std::vector<float>> channels = read_audio_channels(rx, &info, where);
       if (!(info.sample_rate_hz > 0)) throw Error("no sample rate");
-      return static_cast<double>(channels.at(0).size()) / info.sample_rate_hz;
+      return {static_cast<double>(channels.at(0).size()) / info.sample_rate_hz, info.sample_rate_hz,
+              static_cast<int>(channels.size())};
     }
     const AudioInfo info = probe_audio(rx);
     if (!(info.sample_rate_hz > 0)) throw Error("no sample rate");
-    return static_cast<double>(info.frames) / info.sample_rate_hz;
+    return {static_cast<double>(info.frames) / info.sample_rate_hz, info.sample_rate_hz, info.channels};
   } catch (const Error& error) {
     const std::string message = error.what();
     throw Error(message.find(where) == std::string::npos ? where + ": " + message : message);
   }
+}
+
+double rx_duration_s(const std::string& rx, bool read_entire_file, const std::string& where) {
+  return rx_audio_header(rx, read_entire_file, where).duration_s;
 }
 
 void WavDurationOptions::Register(OptionsItf* opts) {

@@ -24,14 +24,30 @@ struct RecordingDuration {
   float duration_s = 0.0f;   // samples / rate, in single precision as Kaldi's BaseFloat
 };
 
-// Duration from the start of a WAV stream when its header states the data size (as Kaldi's
-// WaveInfoHolder does); nullopt for a streamed header (size 0 or 0xFFFFFFFF), another format, or
-// too few bytes. `bytes` = the first bytes of the stream (the header fits in 64 KB).
-std::optional<double> wav_header_duration_s(const std::vector<char>& bytes);
+// What the start of a WAV stream says: rate, channels and, when the header states the data size
+// (as Kaldi's WaveInfoHolder reads it), the duration. nullopt for another format or too few bytes;
+// duration_s nullopt for a streamed header (size 0 or 0xFFFFFFFF). `bytes` = the first bytes of
+// the stream (the header fits in 64 KB).
+struct WavHeaderInfo {
+  double sample_rate_hz = 0;
+  int channels = 0;
+  std::optional<double> duration_s;
+};
+std::optional<WavHeaderInfo> wav_header_info(const std::vector<char>& bytes);
+std::optional<double> wav_header_duration_s(const std::vector<char>& bytes);  // wav_header_info's duration
 
-// The duration of an rxfilename: a file from its header (libsndfile: any format); a pipe or "-"
-// from its WAV header when that states the size (the command is then stopped, as Kaldi does),
-// else by reading it to the end. `read_entire_file`: always decode to the end.
+// Duration, rate and channels of an rxfilename: a file from its header (libsndfile: any format); a
+// pipe or "-" from its WAV header when that states the size, else by decoding it. A pipe is always
+// read to its end (its output past the header discarded) and its exit status checked: a command
+// stopped early dies of SIGPIPE, and some say so on stderr (flac: "ERROR, decoded number of
+// samples is smaller than the total number of samples set in the STREAMINFO"). `read_entire_file`:
+// always decode to the end.
+struct RxAudioHeader {
+  double duration_s = 0;
+  double sample_rate_hz = 0;
+  int channels = 0;
+};
+RxAudioHeader rx_audio_header(const std::string& rx, bool read_entire_file, const std::string& where);
 double rx_duration_s(const std::string& rx, bool read_entire_file, const std::string& where);
 
 // wav-to-duration's options (Kaldi's).

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "augment/noise_signal.h"
+#include "augment/rate_policy.h"
 #include "augment/reverb_steps.h"
 #include "augment/reverberate_stream.h"
 #include "augment/temp_file.h"
@@ -101,6 +102,9 @@ void WavReverberateOptions::Register(OptionsItf* opts) {
                  "bins are multiplied as one complex number), 16-bit output truncated instead of rounded, and with "
                  "--shift-output=false the reverberant tail replaced by the first samples; the input is then "
                  "always held in memory, as Kaldi does");
+  opts->Register("sample-rate", &sample_rate_hz,
+                 "tsrir extension: if > 0, the output's rate in Hz: an input at another rate is resampled to it "
+                 "(libsox rate -v; RIRs and additive signals are always resampled to the output's rate)");
   opts->Register("max-in-memory-duration", &max_in_memory_s,
                  "tsrir extension: inputs longer than this many seconds are reverberated in passes over the file "
                  "with memory independent of their length (same output; a piped input is first copied to a "
@@ -143,6 +147,13 @@ std::vector<OutputChannelSetup> setup_output_channels(
   const size_t num_out = (config.multi_channel_output && have_rir) ? rir_channels.size() : 1;
   if (config.multi_channel_output && config.rir_channel != 0)
     log_warning("--rir-channel is ignored as --multi-channel-output is true");
+  if (have_rir && !config.multi_channel_output && !config.rir_channel_given)
+    warn_channel_used(static_cast<int>(rir_channels.size()), config.rir_channel, "--impulse-response",
+                      "--rir-channel chooses");
+  if (!(config.multi_channel_output && have_rir) && !config.noise_channel_given)
+    for (size_t i = 0; i < additive_channels.size(); ++i)
+      warn_channel_used(static_cast<int>(additive_channels[i].size()), config.noise_channel,
+                        "additive signal " + std::to_string(i + 1), "--noise-channel chooses");
   for (size_t i = 0; i < additive_channels.size(); ++i) {
     if (config.multi_channel_output && have_rir && additive_channels[i].size() != num_out)
       throw Error("additive signal " + std::to_string(i + 1) + " has " + std::to_string(additive_channels[i].size()) +
@@ -230,7 +241,16 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
   const double max_in_memory_s = config.reverb.kaldi_compat ? 1e300 : config.max_in_memory_s;
   SpeechInput input =
       open_speech_input(input_rx, max_in_memory_s, temp_base_for_output(output_wx, "input"), "input");
-  const double fs = input.on_disk() ? probe_audio(input.path).sample_rate_hz : input.info.sample_rate_hz;
+  const AudioInfo input_info = input.on_disk() ? probe_audio(input.path) : input.info;
+  if (!config.input_channel_given)
+    warn_channel_used(input_info.channels, config.input_wave_channel, "input", "--input-wave-channel chooses");
+  const double fs = config.sample_rate_hz > 0 ? config.sample_rate_hz : input_info.sample_rate_hz;
+  if (fs != input_info.sample_rate_hz) {
+    if (input.on_disk())
+      throw Error("input: at " + format_double(input_info.sample_rate_hz) + " Hz, longer than --max-in-memory-duration: " +
+                  "cannot be resampled to --sample-rate=" + format_double(fs) + " (resample it first)");
+    for (auto& channel : input.channels) channel = resample(channel, input_info.sample_rate_hz, fs);
+  }
 
   // Kaldi never checks the RIR's rate; applying a 48 kHz RIR to 16 kHz speech sample by sample
   // would stretch the room 3x, so RIRs (like additive signals) are resampled to the speech's rate.

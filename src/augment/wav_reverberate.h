@@ -26,6 +26,15 @@ struct WavReverberateOptions {
   int input_wave_channel = 0;
   int rir_channel = 0;
   int noise_channel = 0;
+  // Whether the user chose those channels (the program sets these from its command line): a
+  // multichannel input whose channel was not chosen gets a one-line warning naming the one used.
+  bool input_channel_given = true;
+  bool rir_channel_given = true;
+  bool noise_channel_given = true;
+  // Extension: > 0, the output's rate in Hz; an input at another rate is resampled to it (RIRs and
+  // additive signals are always brought to the output's rate). reverberate-data --sample-rate
+  // writes it into its pipes.
+  double sample_rate_hz = 0;
   ReverbOptions reverb;
   // Inputs longer than this (s) are reverberated in passes over the file, with memory bounded
   // independently of their length and the same output (reverberate_stream.h); 0 = every input.

@@ -106,9 +106,12 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
     double pm, pb, pe;
     const auto sm = spectrogram_db(ex.measured, &pm), sb = spectrogram_db(ex.baseline, &pb), se = spectrogram_db(ex.extended, &pe);
     const double dur = 0.8 / 48 * (sm.empty() ? 0 : sm[0].size());
-    out << svg_heatmap("measured", sm, pm - 70, pm, "time, s", dur, "Hz", ex.measured.sample_rate_hz / 2);
-    out << svg_heatmap("baseline simulation", sb, pb - 70, pb, "time, s", dur, "Hz", ex.baseline.sample_rate_hz / 2);
-    out << svg_heatmap("extended simulation", se, pe - 70, pe, "time, s", dur, "Hz", ex.extended.sample_rate_hz / 2);
+    const std::string level = "level, dB re its maximum";
+    out << svg_heatmap("measured", sm, pm - 70, pm, "time, s", dur, "Hz", ex.measured.sample_rate_hz / 2, 380, 220, level, pm);
+    out << svg_heatmap("baseline simulation", sb, pb - 70, pb, "time, s", dur, "Hz", ex.baseline.sample_rate_hz / 2, 380,
+                       220, level, pb);
+    out << svg_heatmap("extended simulation", se, pe - 70, pe, "time, s", dur, "Hz", ex.extended.sample_rate_hz / 2, 380,
+                       220, level, pe);
     out << "<br>";
     {
       PlotSpec p;

@@ -60,16 +60,41 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
+// Legend entries laid out left to right in rows above the frame: (x, row) of each labelled series.
+std::vector<std::pair<double, int>> legend_layout(const std::vector<Series>& series, double left, double width,
+                                                  int* rows) {
+  std::vector<std::pair<double, int>> at;
+  double x = left;
+  int row = 0;
+  for (const Series& se : series) {
+    if (se.label.empty()) {
+      at.emplace_back(0, -1);
+      continue;
+    }
+    const double entry = 28 + 6.2 * se.label.size();
+    if (x > left && x + entry > left + width) x = left, ++row;
+    at.emplace_back(x, row);
+    x += entry + 10;
+  }
+  *rows = x > left || row > 0 ? row + 1 : 0;
+  return at;
+}
+
 std::string svg_plot(const PlotSpec& p) {
-  const double left = 58, right = 12, top = 26, bottom = 40;
-  const double w = p.width - left - right, h = p.height - top - bottom;
+  int legend_rows = 0;
+  const double left = 58, right = 12, bottom = 40;
+  const double w = p.width - left - right;
+  const auto legend = legend_layout(p.series, left, w, &legend_rows);
+  const double top = 26 + 14.0 * legend_rows;
+  const double h = p.height - 26 - bottom;  // the frame keeps its size; the legend adds height
+  const double height = p.height + 14.0 * legend_rows;
   auto tx = [&](double x) {
     if (p.log_x) return left + w * (std::log(x / p.x_min) / std::log(p.x_max / p.x_min));
     return left + w * (x - p.x_min) / (p.x_max - p.x_min);
   };
   auto ty = [&](double y) { return top + h * (1.0 - (std::clamp(y, p.y_min, p.y_max) - p.y_min) / (p.y_max - p.y_min)); };
   std::ostringstream s;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << p.width << "' height='" << p.height
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << p.width << "' height='" << height
     << "' font-family='sans-serif' font-size='11'>";
   s << "<rect x='" << left << "' y='" << top << "' width='" << w << "' height='" << h << "' fill='#fff' stroke='#888'/>";
   s << "<text x='" << p.width / 2 << "' y='16' text-anchor='middle' font-size='13'>" << html_escape(p.title) << "</text>";
@@ -86,7 +111,7 @@ std::string svg_plot(const PlotSpec& p) {
   for (double t : xt) {
     s << "<line x1='" << f1(tx(t)) << "' y1='" << top << "' x2='" << f1(tx(t)) << "' y2='" << top + h
       << "' stroke='#eee'/><text x='" << f1(tx(t)) << "' y='" << top + h + 14 << "' text-anchor='middle'>"
-      << format_double(t, 4) << "</text>";
+      << format_double(t, 6) << "</text>";
   }
   for (double t : ticks(p.y_min, p.y_max, 5)) {
     s << "<line x1='" << left << "' y1='" << f1(ty(t)) << "' x2='" << left + w << "' y2='" << f1(ty(t))
@@ -119,16 +144,20 @@ std::string svg_plot(const PlotSpec& p) {
       s << "'/>";
     }
   }
-  // Legend, top right inside the frame.
-  double ly = top + 14;
-  for (const Series& se : p.series) {
-    if (se.label.empty()) continue;
-    s << "<line x1='" << left + w - 120 << "' y1='" << ly - 4 << "' x2='" << left + w - 100 << "' y2='" << ly - 4
-      << "' stroke='" << se.colour << "' stroke-width='2'" << (se.dashed ? " stroke-dasharray='5,3'" : "")
-      << "/><text x='" << left + w - 96 << "' y='" << ly << "'>" << html_escape(se.label) << "</text>";
-    ly += 14;
+  // Legend above the frame, between the title and the data.
+  for (size_t i = 0; i < p.series.size(); ++i) {
+    const Series& se = p.series[i];
+    if (legend[i].second < 0) continue;
+    const double lx = legend[i].first, ly = 26 + 14.0 * legend[i].second + 8;
+    if (se.points) {
+      s << "<circle cx='" << lx + 10 << "' cy='" << ly - 4 << "' r='3' fill='" << se.colour << "'/>";
+    } else {
+      s << "<line x1='" << lx << "' y1='" << ly - 4 << "' x2='" << lx + 20 << "' y2='" << ly - 4 << "' stroke='"
+        << se.colour << "' stroke-width='2'" << (se.dashed ? " stroke-dasharray='5,3'" : "") << "/>";
+    }
+    s << "<text x='" << lx + 24 << "' y='" << ly << "'>" << html_escape(se.label) << "</text>";
   }
-  s << "<text x='" << left + w / 2 << "' y='" << p.height - 6 << "' text-anchor='middle'>" << html_escape(p.x_label)
+  s << "<text x='" << left + w / 2 << "' y='" << height - 6 << "' text-anchor='middle'>" << html_escape(p.x_label)
     << "</text>";
   s << "<text transform='translate(14," << top + h / 2 << ") rotate(-90)' text-anchor='middle'>" << html_escape(p.y_label)
     << "</text></svg>";
@@ -137,8 +166,8 @@ std::string svg_plot(const PlotSpec& p) {
 
 std::string svg_heatmap(const std::string& title, const std::vector<std::vector<double>>& v, double v_min, double v_max,
                         const std::string& x_label, double x_max, const std::string& y_label, double y_max, int width,
-                        int height) {
-  const double left = 46, right = 8, top = 22, bottom = 34;
+                        int height, const std::string& colour_label, double colour_offset) {
+  const double left = 46, right = 62, top = 22, bottom = 34;  // right: the colour bar and its labels
   const double w = width - left - right, h = height - top - bottom;
   std::ostringstream s;
   s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << width << "' height='" << height
@@ -175,7 +204,24 @@ std::string svg_heatmap(const std::string& title, const std::vector<std::vector<
   }
   s << "<text x='" << left + w / 2 << "' y='" << height - 4 << "' text-anchor='middle'>" << html_escape(x_label) << "</text>";
   s << "<text transform='translate(11," << top + h / 2 << ") rotate(-90)' text-anchor='middle'>" << html_escape(y_label)
-    << "</text></svg>";
+    << "</text>";
+  // Colour bar: the ramp from v_min (bottom) to v_max (top) in 32 steps, with ticks.
+  const double bx = left + w + 10, bw = 10;
+  for (int k = 0; k < 32; ++k)
+    s << "<rect x='" << bx << "' y='" << f1(top + h - (k + 1) * h / 32) << "' width='" << bw << "' height='"
+      << f1(h / 32 + 0.6) << "' fill='" << ramp((k + 0.5) / 32) << "'/>";
+  s << "<rect x='" << bx << "' y='" << top << "' width='" << bw << "' height='" << h << "' fill='none' stroke='#444'/>";
+  if (v_max > v_min) {
+    for (double t : ticks(v_min - colour_offset, v_max - colour_offset, 4)) {
+      const double y = top + h - h * (t + colour_offset - v_min) / (v_max - v_min);
+      s << "<line x1='" << bx + bw << "' y1='" << f1(y) << "' x2='" << bx + bw + 3 << "' y2='" << f1(y)
+        << "' stroke='#444'/><text x='" << bx + bw + 5 << "' y='" << f1(y + 4) << "'>" << format_double(t, 3) << "</text>";
+    }
+  }
+  if (!colour_label.empty())
+    s << "<text transform='translate(" << width - 4 << "," << top + h / 2 << ") rotate(-90)' text-anchor='middle'>"
+      << html_escape(colour_label) << "</text>";
+  s << "</svg>";
   return s.str();
 }
 

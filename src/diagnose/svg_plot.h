@@ -27,12 +27,16 @@ struct PlotSpec {
   int width = 520, height = 300;
 };
 
+// The legend is drawn above the plot frame (wrapped into rows), never over the data.
 std::string svg_plot(const PlotSpec& spec);
 
-// values[row][col], row 0 at the bottom; colour scale from v_min (dark) to v_max (bright).
+// values[row][col], row 0 at the bottom; colour scale from v_min (dark) to v_max (bright), drawn as a
+// colour bar on the right labelled `colour_label`, its ticks showing value - colour_offset (e.g. dB
+// re the maximum with colour_offset = v_max).
 std::string svg_heatmap(const std::string& title, const std::vector<std::vector<double>>& values, double v_min,
                         double v_max, const std::string& x_label, double x_max, const std::string& y_label, double y_max,
-                        int width = 340, int height = 220);
+                        int width = 380, int height = 220, const std::string& colour_label = "",
+                        double colour_offset = 0);
 
 std::string html_escape(const std::string& s);
 

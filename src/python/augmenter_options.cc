@@ -44,6 +44,7 @@ const std::map<std::string, Field>& fields() {
     t["rir_smoothing_weight"] = field(&Options::rir_smoothing_weight);
     t["noise_smoothing_weight"] = field(&Options::noise_smoothing_weight);
     t["seed"] = field(&Options::random_seed);
+    t["sample_rate"] = field(&Options::source_sampling_rate_hz);  // --sample-rate (rate_policy.h)
     t["snr_reference"] = {
         [](Options& o, const py::handle& v) { o.reverb.snr_reference = parse_snr_reference(v.cast<std::string>()); },
         [](const Options& o) { return py::cast(snr_reference_name(o.reverb.snr_reference)); }};

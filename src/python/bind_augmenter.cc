@@ -25,6 +25,7 @@
 #include "arrays.h"
 #include "augment/augment_plan.h"
 #include "augment/augment_sources.h"
+#include "augment/rate_policy.h"
 #include "augment/reverberate.h"
 #include "augment/reverberate_data.h"
 #include "augment/sampling.h"
@@ -53,6 +54,10 @@ class Augmenter {
             std::map<std::string, double> durations)
       : options_(std::move(options)), wav_scp_(std::move(wav_scp)), durations_(std::move(durations)) {
     if (wav_scp_.empty()) throw Error("Augmenter: no recordings (give data_dir or recordings)");
+    // The data dir's rate (rate_policy.h): sample_rate, else the first recording's.
+    const auto& [first_id, first_rx] = *wav_scp_.begin();
+    dir_rate_ = std::make_unique<DirSampleRate>(options_.source_sampling_rate_hz, first_id, first_rx,
+                                                "wav.scp: recording '" + first_id + "'");
     const ReverberateDataOptions& o = options_;
     check_probability(o.speech_rvb_probability, "speech_rvb_probability");
     if (o.noise_start != "random" && o.noise_start != "zero")
@@ -96,6 +101,7 @@ class Augmenter {
   const std::map<std::string, std::string>& wav_scp() const { return wav_scp_; }
   const std::map<std::string, double>& durations() const { return durations_; }
   const AugmentSources& sources() const { return sources_; }
+  const DirSampleRate& dir_rate() const { return *dir_rate_; }
 
   // The plan of copy `copy` (>= 1) of recording `id`, noise offsets in seconds resolved.
   RecordingPlan plan(const std::string& id, int copy) {
@@ -163,9 +169,9 @@ class Augmenter {
       if (it != rirs_.end()) return it->second;
     }
     const RirChoice& choice = sources_.rirs[static_cast<size_t>(index)];
-    std::vector<std::vector<float>> ch =
-        read_channels_at_rate(choice.rxfilename, fs, choice.where + " (RIR '" + choice.id + "')");
-    auto prepared = std::make_shared<const PreparedRir>(std::move(ch.at(0)), fs);
+    const std::string what = choice.where + " (RIR '" + choice.id + "')";
+    auto prepared =
+        std::make_shared<const PreparedRir>(first_channel_of(read_channels_at_rate(choice.rxfilename, fs, what), what), fs);
     std::lock_guard<std::mutex> lock(mutex_);
     return rirs_.emplace(std::make_pair(index, fs), prepared).first->second;
   }
@@ -177,9 +183,9 @@ class Augmenter {
       if (it != noises_.end()) return it->second;
     }
     const NoiseChoice& choice = sources_.noises[static_cast<size_t>(index)];
-    std::vector<std::vector<float>> ch =
-        read_channels_at_rate(choice.rxfilename, fs, choice.where + " (noise '" + choice.id + "')");
-    auto samples = std::make_shared<const std::vector<float>>(std::move(ch.at(0)));
+    const std::string what = choice.where + " (noise '" + choice.id + "')";
+    auto samples =
+        std::make_shared<const std::vector<float>>(first_channel_of(read_channels_at_rate(choice.rxfilename, fs, what), what));
     std::lock_guard<std::mutex> lock(mutex_);
     return noises_.emplace(std::make_pair(index, fs), samples).first->second;
   }
@@ -197,6 +203,7 @@ class Augmenter {
   }
 
   ReverberateDataOptions options_;
+  std::unique_ptr<DirSampleRate> dir_rate_;
   std::map<std::string, std::string> wav_scp_;
   std::map<std::string, double> durations_;
   AugmentSources sources_;
@@ -304,16 +311,19 @@ void bind_augmenter(py::module_& m) {
       .def(
           "__call__",
           [](Augmenter& self, const py::handle& speech, double fs, const std::string& id, int copy) {
-            const std::vector<float> x = to_samples(speech, "speech");
+            std::vector<std::vector<float>> x = {to_samples(speech, "speech")};
             std::vector<float> y;
             {
               py::gil_scoped_release release;
-              y = self.materialise(x, fs, self.plan(id, copy));
+              const std::vector<float> at_rate =
+                  self.dir_rate().speech_at_rate(std::move(x), fs, "speech of recording '" + id + "'");
+              y = self.materialise(at_rate, self.dir_rate().rate_hz(), self.plan(id, copy));
             }
             return to_numpy(std::move(y));
           },
           py::arg("speech"), py::arg("fs"), py::arg("id"), py::arg("copy") = 1,
-          "The far-field copy of one utterance given its samples (1-D float32).")
+          "The far-field copy of one utterance given its samples (1-D float32) at fs Hz, at the data dir's\n"
+          "rate (rate_policy.h: a speech at another rate is resampled when sample_rate was given, else refused).")
       .def(
           "augment",
           [](Augmenter& self, const std::string& id, int copy) {
@@ -323,15 +333,19 @@ void bind_augmenter(py::module_& m) {
               py::gil_scoped_release release;
               const RecordingPlan plan = self.plan(id, copy);
               AudioInfo info;
-              std::vector<std::vector<float>> channels =
-                  read_audio_channels(plan.source_rx, &info, "wav.scp: recording '" + id + "'");
-              fs = info.sample_rate_hz;
-              y = self.materialise(channels.at(0), fs, plan);
+              const std::string where = "wav.scp: recording '" + id + "'";
+              std::vector<std::vector<float>> channels = read_audio_channels(plan.source_rx, &info, where);
+              fs = self.dir_rate().rate_hz();
+              y = self.materialise(self.dir_rate().speech_at_rate(std::move(channels), info.sample_rate_hz, where), fs,
+                                   plan);
             }
             return py::make_tuple(to_numpy(std::move(y)), fs);
           },
           py::arg("id"), py::arg("copy") = 1,
-          "Reads the recording's wav.scp entry (path or 'command |') and returns (far-field copy, fs).")
+          "Reads the recording's wav.scp entry (path or 'command |') and returns (far-field copy, fs): fs is\n"
+          "the data dir's rate (a recording at another rate is resampled when sample_rate was given, else refused).")
+      .def_property_readonly("sample_rate", [](const Augmenter& a) { return a.dir_rate().rate_hz(); },
+                             "The data dir's rate in Hz (sample_rate, else the first recording's).")
       .def_property_readonly(
           "recordings",
           [](const Augmenter& a) {

@@ -2,6 +2,7 @@
 
 #include <iostream>
 #include <mutex>
+#include <utility>
 
 namespace tsrir {
 namespace {
@@ -11,6 +12,7 @@ std::string& program_name() {
   return name;
 }
 std::mutex g_log_mutex;
+std::function<void(const std::string&)> g_warning_handler;  // guarded by g_log_mutex
 
 }  // namespace
 
@@ -26,8 +28,17 @@ void log_info(const std::string& message) {
   std::cerr << program_name() << ": " << message << std::endl;
 }
 
+void set_warning_handler(std::function<void(const std::string& message)> handler) {
+  std::lock_guard<std::mutex> lock(g_log_mutex);
+  g_warning_handler = std::move(handler);
+}
+
 void log_warning(const std::string& message) {
   std::lock_guard<std::mutex> lock(g_log_mutex);
+  if (g_warning_handler) {
+    g_warning_handler(message);
+    return;
+  }
   std::cerr << program_name() << ": WARNING: " << message << std::endl;
 }
 

@@ -1,6 +1,7 @@
 // Progress and log lines on stderr, prefixed with the running program's name. Kept apart from
 // command-line parsing so that library code that only logs does not depend on the option parser.
 #pragma once
+#include <functional>
 #include <string>
 
 namespace tsrir {
@@ -12,5 +13,9 @@ const std::string& log_program_name();
 // Whole lines, serialised across threads.
 void log_info(const std::string& message);
 void log_warning(const std::string& message);
+
+// Where log_warning() sends its message instead of stderr (the Python module hands them to Python's
+// `warnings`); an empty function restores stderr. The handler runs under the log's lock.
+void set_warning_handler(std::function<void(const std::string& message)> handler);
 
 }  // namespace tsrir

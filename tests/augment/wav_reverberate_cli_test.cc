@@ -281,12 +281,12 @@ TEST_F(WavReverberateCli, StreamingPathErrorsLeaveNothing) {
   std::ofstream(d("cut.wav"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);  // header claims twice that
   std::filesystem::create_directories(d("tmp_err"));
   const std::string env = "TMPDIR=" + d("tmp_err") + " ";
-  EXPECT_EQ(run(env + kBin + stream + " " + d("cut.wav") + " " + d("e1.wav") + " 2> " + d("e1.log")), 255);
+  EXPECT_EQ(run(env + kBin + stream + " " + d("cut.wav") + " " + d("e1.wav") + " 2> " + d("e1.log")), 1);
   EXPECT_NE(file_bytes(d("e1.log")).find("cut.wav"), std::string::npos) << file_bytes(d("e1.log"));
-  EXPECT_EQ(run(env + kBin + stream + " 'cat " + d("cut.wav") + " |' " + d("e2.wav") + " 2>/dev/null"), 255);
-  EXPECT_EQ(run(env + kBin + stream + " 'cat " + d("speech.wav") + "; exit 3 |' " + d("e3.wav") + " 2> " + d("e3.log")), 255);
+  EXPECT_EQ(run(env + kBin + stream + " 'cat " + d("cut.wav") + " |' " + d("e2.wav") + " 2>/dev/null"), 1);
+  EXPECT_EQ(run(env + kBin + stream + " 'cat " + d("speech.wav") + "; exit 3 |' " + d("e3.wav") + " 2> " + d("e3.log")), 1);
   EXPECT_NE(file_bytes(d("e3.log")).find("exit status 3"), std::string::npos) << file_bytes(d("e3.log"));
-  EXPECT_EQ(run(env + kBin + stream + " --input-wave-channel=2 " + d("speech.wav") + " " + d("e4.wav") + " 2>/dev/null"), 255);
+  EXPECT_EQ(run(env + kBin + stream + " --input-wave-channel=2 " + d("speech.wav") + " " + d("e4.wav") + " 2>/dev/null"), 1);
   for (const char* name : {"e1.wav", "e2.wav", "e3.wav", "e4.wav"}) EXPECT_FALSE(std::filesystem::exists(d(name))) << name;
   EXPECT_TRUE(std::filesystem::is_empty(d("tmp_err")));
   EXPECT_TRUE(temporaries_in(*dir_).empty());
@@ -298,12 +298,12 @@ TEST_F(WavReverberateCli, CommandLineContract) {
   EXPECT_EQ(run(kBin + " --help" + q), 0);
   EXPECT_EQ(run(kBin + io + " --volume=2" + q), 1);                          // options after positionals
   EXPECT_EQ(run(kBin + " " + d("speech.wav") + q), 1);                       // one positional
-  EXPECT_EQ(run(kBin + " --impulse-response " + d("rir16.wav") + io + q), 255);  // --name value
-  EXPECT_EQ(run(kBin + " --no-such-option=1" + io + q), 255);
-  EXPECT_EQ(run(kBin + " --additive-signals=" + d("noise1.wav") + io + q), 255);  // needs --snrs, --start-times
-  EXPECT_EQ(run(kBin + " --additive-signals=" + d("noise1.wav") + " --snrs=1,2 --start-times=0,0" + io + q), 255);
-  EXPECT_EQ(run(kBin + " --impulse-response=" + d("missing.wav") + io + q), 255);
-  EXPECT_EQ(run(kBin + " '--impulse-response=false |'" + io + q), 255);      // failing input pipe
+  EXPECT_EQ(run(kBin + " --impulse-response " + d("rir16.wav") + io + q), 1);  // --name value
+  EXPECT_EQ(run(kBin + " --no-such-option=1" + io + q), 1);
+  EXPECT_EQ(run(kBin + " --additive-signals=" + d("noise1.wav") + io + q), 1);  // needs --snrs, --start-times
+  EXPECT_EQ(run(kBin + " --additive-signals=" + d("noise1.wav") + " --snrs=1,2 --start-times=0,0" + io + q), 1);
+  EXPECT_EQ(run(kBin + " --impulse-response=" + d("missing.wav") + io + q), 1);
+  EXPECT_EQ(run(kBin + " '--impulse-response=false |'" + io + q), 1);      // failing input pipe
   EXPECT_FALSE(std::filesystem::exists(d("c.wav")));
   EXPECT_EQ(run(kBin + " --print-args=false --Shift_Output=FALSE" + io + q), 0);
   // --help prints the usage with an example and the reason for the program's name.

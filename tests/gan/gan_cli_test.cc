@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <vector>
 #include <thread>
@@ -124,12 +125,24 @@ TEST_F(GanCli, CollapseCheckStopsTrainingWithAClearMessage) {
   const std::string svg = slurp(dir_ + "/fine/loss_curves.svg");
   EXPECT_NE(svg.find("<polyline"), std::string::npos);
   EXPECT_NE(slurp(dir_ + "/fine/settings.txt").find("generator residual"), std::string::npos);
-  // The default identity weight 0 skips the identity passes: its columns read nan, its panel says
-  // so instead of drawing a curve, and no coordinate is nan.
+  // The default identity weight 0 skips the identity passes: its columns read nan, the figure names
+  // them in a note instead of drawing an empty panel (three panels), and no coordinate is nan.
   const std::string log = slurp(dir_ + "/fine/loss_log.csv");
   EXPECT_NE(log.find(",nan,nan,"), std::string::npos) << log;
-  EXPECT_NE(svg.find("identity_l1_real: not computed"), std::string::npos);
+  EXPECT_NE(svg.find("not computed in this run (weight 0): identity L1"), std::string::npos) << svg;
+  size_t panels = 0;
+  for (size_t at = svg.find("font-weight='bold'"); at != std::string::npos; at = svg.find("font-weight='bold'", at + 1))
+    ++panels;
+  EXPECT_EQ(panels, 3u) << svg;
   EXPECT_EQ(svg.find("nan"), std::string::npos);
+  // Labelled axes with several ticks each, short tick labels (3 significant digits).
+  EXPECT_NE(svg.find(">training step</text>"), std::string::npos);
+  EXPECT_NE(svg.find("loss (log scale)"), std::string::npos);
+  const std::regex tick(">(-?[0-9.]+(e[-+]?[0-9]+)?)</text>");
+  size_t ticks = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), tick); it != std::sregex_iterator(); ++it, ++ticks)
+    EXPECT_LE((*it)[1].str().size(), 8u) << (*it)[1].str();
+  EXPECT_GE(ticks, 3u * 4u) << svg;
 }
 
 TEST_F(GanCli, BadTrainingInput) {

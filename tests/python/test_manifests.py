@@ -127,16 +127,43 @@ class Manifests(unittest.TestCase):
             mf.export_data_dir(d, self.dir + "/lhotse_data")
 
     def test_espnet_and_speechbrain_lists(self):
-        scp = mf.write_espnet_scp(self.recordings, self.dir + "/rirs.scp")
+        recs = mf.read_recordings(self.recordings)
+        fs = recs[0]["sampling_rate"]
+        scp = mf.write_espnet_scp(self.recordings, self.dir + "/rirs.scp", sampling_rate=fs)
         with open(scp) as f:
             rows = [line.split() for line in f]
-        recs = mf.read_recordings(self.recordings)
         self.assertEqual(rows, [[r["id"], r["sources"][0]["source"]] for r in recs])
-        path = mf.write_speechbrain_csv(self.recordings, self.dir + "/rirs.csv")
+        path = mf.write_speechbrain_csv(self.recordings, self.dir + "/rirs.csv", sampling_rate=fs)
         with open(path, newline="") as f:
             table = list(csv.DictReader(f))
         self.assertEqual([(t["ID"], float(t["duration"]), t["wav"]) for t in table],
                          [(r["id"], r["duration"], r["sources"][0]["source"]) for r in recs])
+
+
+    def test_lists_are_at_the_corpus_rate_or_say_so(self):
+        import warnings
+        write_wav16(self.dir + "/r48.wav", np.r_[0.8, np.zeros(4799)], 48000)
+        write_wav16(self.dir + "/r16.wav", np.r_[0.8, np.zeros(1599)], 16000)
+        write_text(self.dir + "/mixed.scp", "r16 %s/r16.wav\nr48 %s/r48.wav\n" % (self.dir, self.dir))
+        recs = self.dir + "/mixed_lhotse/recordings.jsonl"
+        lines = [mf._json_line(mf.recording_dict(i, p)) for i, p in
+                 (("r16", self.dir + "/r16.wav"), ("r48", self.dir + "/r48.wav"))]
+        mf._write_lines(recs, lines, False)
+        with self.assertRaisesRegex(tsrir.Error, r"'r48' at 48000 Hz.*resample_dir"):
+            mf.write_espnet_scp(recs, self.dir + "/m.scp", sampling_rate=16000)
+        self.assertFalse(os.path.exists(self.dir + "/m.scp"))
+        scp = mf.write_espnet_scp(recs, self.dir + "/m.scp", sampling_rate=16000, resample_dir=self.dir + "/rs")
+        with open(scp) as f:
+            listed = dict(line.split() for line in f)
+        self.assertEqual(listed["r16"], self.dir + "/r16.wav")
+        self.assertEqual(listed["r48"], os.path.abspath(self.dir + "/rs/r48.wav"))
+        x, fs = tsrir.read_audio(listed["r48"])
+        self.assertEqual((fs, x.shape), (16000, (1, 1600)))
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            mf.write_speechbrain_csv(recs, self.dir + "/m.csv")
+        messages = [str(w.message) for w in caught if issubclass(w.category, tsrir.TsrirWarning)]
+        self.assertTrue(any("16000 Hz (1), 48000 Hz (1)" in m for m in messages), messages)
 
 
 if __name__ == "__main__":

@@ -52,6 +52,16 @@ class FarField(unittest.TestCase):
                 seen.add(item["id"])
         self.assertEqual(seen, set(self.wav_scp))  # copies 1..4 of every recording, each once
 
+    def test_arguments_are_checked_by_name(self):
+        augmenter = tsrir.Augmenter(**settings(self.dir))
+        with self.assertRaisesRegex(TypeError, "copies: expected an integer"):
+            FarFieldDataset(augmenter, copies="2")
+        with self.assertRaisesRegex(ValueError, "copies: must be >= 1"):
+            FarFieldDataset(augmenter, copies=0)
+        with self.assertRaisesRegex(ValueError, "epoch: must be >= 0"):
+            FarFieldDataset(augmenter).set_epoch(-1)
+        self.assertEqual(FarFieldDataset(augmenter, copies=np.int64(2)).copies, 2)
+
     def test_batches(self):
         dataset = FarFieldDataset(tsrir.Augmenter(**settings(self.dir)))
         loader = torch.utils.data.DataLoader(dataset, batch_size=4, num_workers=2, collate_fn=pad_collate)
@@ -65,8 +75,10 @@ class FarField(unittest.TestCase):
     def test_example_script_runs(self):
         src = os.environ.get("TSRIR_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
         opts = [o for o in program_options(self.dir) if not o.startswith("--num-replications")]
-        args = [sys.executable, os.path.join(src, "examples/python/farfield_dataloader.py"), self.dir + "/in",
-                "--num-workers", "4", "--epochs", "2", "--batch-size", "2"] + opts
+        # As README prints it: options with their values as separate words, the data dir last.
+        words = [w for o in opts for w in (o.split("=", 1) if o.startswith("--") and "=" in o else [o])]
+        args = [sys.executable, os.path.join(src, "examples/python/farfield_dataloader.py"),
+                "--num-workers", "4", "--epochs", "2", "--batch-size", "2"] + words + [self.dir + "/in"]
         out = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
         self.assertEqual(out.returncode, 0, out.stderr)
         self.assertIn("epoch 1: 6 utterances", out.stdout)

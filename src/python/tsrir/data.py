@@ -14,6 +14,7 @@ Recordings only: segments are not cut (as reverberate-data, which works on recor
 """
 import numpy as np
 
+from . import _convert
 from . import _tsrir
 
 
@@ -26,16 +27,22 @@ except ImportError:  # pragma: no cover
 
 
 class FarFieldDataset(_Base):
+    """A map-style dataset of far-field copies: len = copies x recordings; item i is a dict
+    {"id": reverberate-data's new id, "recording", "copy", "fs": int Hz, "audio": float32 tensor
+    (samples,)} (numpy without torch). augmenter: a tsrir.Augmenter; copies: per recording and epoch;
+    set_epoch(e) moves to copies e*copies+1 .. e*copies+copies."""
+
     def __init__(self, augmenter, copies=1):
-        if copies < 1:
-            raise _tsrir.Error("copies must be >= 1")
+        copies = _convert.number(copies, "copies", integer=True, minimum=1)
         self.recordings = augmenter.recordings
         self.augmenter = augmenter
         self.copies = copies
         self.epoch = 0
 
     def set_epoch(self, epoch):
-        self.epoch = int(epoch)
+        """Moves to epoch `epoch` (int >= 0): its items are copies epoch*copies+1 .. epoch*copies+copies
+        (new draws; what reverberate-data writes as those copies)."""
+        self.epoch = _convert.number(epoch, "epoch", integer=True, minimum=0)
 
     def __len__(self):
         return self.copies * len(self.recordings)
@@ -49,6 +56,8 @@ class FarFieldDataset(_Base):
         return copy, rid, rx
 
     def item_numpy(self, index):
+        """Item `index` without torch: the dict of __getitem__ with "audio" a float32 numpy array
+        (samples,) at "fs" (int Hz), full scale 1.0."""
         copy, rid, rx = self.key(index)
         samples, fs = self.augmenter.augment(rid, copy)
         return {"id": self.augmenter.plan(rid, copy)["new_id"], "recording": rid, "copy": copy,
@@ -62,7 +71,8 @@ class FarFieldDataset(_Base):
 
 
 def pad_collate(items):
-    """Batches items of different lengths: audio zero-padded to the longest, with lengths."""
+    """Batches items of different lengths: {"id": [str], "audio": float32 (batch, max samples), zero-padded,
+    "lengths": int64 (batch,) samples, "fs": int Hz}."""
     lengths = [len(i["audio"]) for i in items]
     audio = torch.zeros(len(items), max(lengths))
     for row, i in enumerate(items):

@@ -23,6 +23,8 @@ import os
 import shlex
 import tempfile
 
+import numpy as np
+
 from . import _tsrir
 
 RECORDING_KEYS = {"id", "sources", "sampling_rate", "num_samples", "duration", "channel_ids", "transforms"}
@@ -209,27 +211,64 @@ def import_noise_recordings(recordings_jsonl, noise_list, noise_type="point-sour
     return path
 
 
-def write_espnet_scp(recordings_jsonl, scp, overwrite=False):
-    """ESPnet's --rir_scp / --noise_scp: '<id> <path>' per line."""
-    lines = []
+def _at_corpus_rate(recordings_jsonl, sampling_rate, resample_dir, what):
+    """[(id, file path, duration s)] of a RecordingSet for a toolkit that uses the files as they are
+    (ESPnet's and SpeechBrain's reverberation and noise addition do not resample them).
+
+    sampling_rate (Hz): the corpus's rate. Recordings at another rate are written, resampled with
+    the programs' resampler, as 16-bit WAVs <resample_dir>/<id>.wav and listed instead; without
+    resample_dir they are an error naming them. sampling_rate None: the files are listed as they are,
+    and a TsrirWarning says at which rates (so a 48 kHz RIR list for a 16 kHz corpus never goes
+    unremarked)."""
+    import warnings
+    from . import TsrirWarning, read_audio, resample, write_wav
+    rows, rates, other = [], {}, []
     for rec, (_, where) in zip(read_recordings(recordings_jsonl), read_jsonl(recordings_jsonl)):
         path = recording_rxfilename(rec, where)
         if path.endswith("|"):
-            raise _tsrir.Error("%s: ESPnet's scp needs a file, not a command" % where)
-        lines.append("%s %s" % (rec["id"], path))
-    return _write_lines(scp, lines, overwrite)
+            raise _tsrir.Error("%s: %s needs a file, not a command" % (where, what))
+        rates.setdefault(rec["sampling_rate"], []).append(rec["id"])
+        if sampling_rate is not None and rec["sampling_rate"] != sampling_rate:
+            other.append((rec, path))
+        rows.append([rec["id"], path, rec["duration"]])
+    if sampling_rate is None:
+        warnings.warn("%s lists %s as they are, at %s: %s does not resample them; give sampling_rate=<the "
+                      "corpus's rate> to have them checked or resampled"
+                      % (os.path.basename(recordings_jsonl), what,
+                         ", ".join("%d Hz (%d)" % (r, len(ids)) for r, ids in sorted(rates.items())), what),
+                      TsrirWarning, stacklevel=3)
+        return rows
+    if other and resample_dir is None:
+        raise _tsrir.Error("%s: %d recording(s) not at the corpus rate %d Hz (e.g. '%s' at %d Hz): give "
+                           "resample_dir= to write %d Hz copies, or list recordings at the corpus rate"
+                           % (recordings_jsonl, len(other), sampling_rate, other[0][0]["id"],
+                              other[0][0]["sampling_rate"], sampling_rate))
+    resampled = {}
+    for rec, path in other:
+        samples, fs = read_audio(path)
+        out = os.path.join(resample_dir, rec["id"] + ".wav")
+        os.makedirs(resample_dir, exist_ok=True)
+        write_wav(out, np.stack([resample(c, fs, sampling_rate) for c in samples]), sampling_rate)
+        resampled[rec["id"]] = os.path.abspath(out)
+    return [[i, resampled.get(i, p), d] for i, p, d in rows]
 
 
-def write_speechbrain_csv(recordings_jsonl, csv_path, overwrite=False):
-    """SpeechBrain's RIR / noise CSV for AddReverb / AddNoise: ID,duration,wav."""
+def write_espnet_scp(recordings_jsonl, scp, sampling_rate=None, resample_dir=None, overwrite=False):
+    """ESPnet's --rir_scp / --noise_scp: '<id> <path>' per line, at the corpus's sampling_rate (Hz):
+    recordings at another rate are resampled into resample_dir (see _at_corpus_rate); without
+    sampling_rate they are listed as they are, with a TsrirWarning naming their rates."""
+    rows = _at_corpus_rate(recordings_jsonl, sampling_rate, resample_dir, "ESPnet's scp")
+    return _write_lines(scp, ["%s %s" % (i, p) for i, p, _ in rows], overwrite)
+
+
+def write_speechbrain_csv(recordings_jsonl, csv_path, sampling_rate=None, resample_dir=None, overwrite=False):
+    """SpeechBrain's RIR / noise CSV for AddReverb / AddNoise: ID,duration,wav, at the corpus's
+    sampling_rate (Hz) as write_espnet_scp."""
     import csv
     import io
     rows = []
-    for rec, (_, where) in zip(read_recordings(recordings_jsonl), read_jsonl(recordings_jsonl)):
-        path = recording_rxfilename(rec, where)
-        if path.endswith("|"):
-            raise _tsrir.Error("%s: SpeechBrain's CSV needs a file, not a command" % where)
+    for i, p, duration in _at_corpus_rate(recordings_jsonl, sampling_rate, resample_dir, "SpeechBrain's CSV"):
         buf = io.StringIO()
-        csv.writer(buf, lineterminator="").writerow([rec["id"], repr(rec["duration"]), path])
+        csv.writer(buf, lineterminator="").writerow([i, repr(duration), p])
         rows.append(buf.getvalue())
     return _write_lines(csv_path, ["ID,duration,wav"] + rows, overwrite)
