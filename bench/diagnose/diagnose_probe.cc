@@ -2,6 +2,7 @@
 // per set: which effects were detected, with their statistics (for sweeps; see power_sweep.sh).
 //   diagnose_probe --effects=a,b --seed=N [--count=24] [--fix=name=value,...] [--highpass-hz=F]
 //                  [--position-error-m=E] [--size-error=E] [--pre-align-ms=T] [--verbose]
+//                  [--dense-modes]   (room_modes hidden as the true room's whole modal field)
 //                  [--gas-scattering=S]  (the self-consistency check of the scattering fit:
 //                                    "measured" = the baseline simulator itself with scattering S)
 //                  [--strength=K]   (one effect: its hidden parameter set so that its nominal
@@ -82,6 +83,8 @@ int main(int argc, char** argv) {
       strength = std::stod(value("--strength="));
     } else if (!value("--write-set=").empty()) {
       write_set = value("--write-set=");
+    } else if (a == "--dense-modes") {
+      options.dense_modes = true;
     } else if (a == "--verbose") {
       verbose = true;
     } else {

@@ -77,6 +77,83 @@ sim::BandValues test_eyring_rate_per_s(const TrueRoom& r) {
   return rate;
 }
 
+double test_schroeder_hz(const TrueRoom& r) {
+  return 2000.0 * std::sqrt(13.815510557964274 / test_eyring_rate_per_s(r)[1] / volume(r));
+}
+
+std::vector<double> test_modal_field(const TrueRoom& room, double fs, size_t n, Rng& rng) {
+  const double c = room.speed_of_sound_m_s, V = volume(room);
+  const double f_max = room.modal_max_factor * test_schroeder_hz(room);
+  // Long enough that the slowest mode has died away before the inverse FFT wraps it onto the
+  // start (4 s: a mode with a 2 s T60 is 120 dB down).
+  const size_t nfft = next_fast_fft_size(std::max(n, static_cast<size_t>(4.0 * fs)));
+  const double df = fs / nfft;
+  // Transfer functions are summed up to twice the top mode (their tails reach above it), then
+  // faded out over the octave above the top mode: no sharp edge in the spectrum, no ringing.
+  const size_t bins = std::min(nfft / 2 + 1, static_cast<size_t>(std::ceil(2.0 * f_max / df)) + 1);
+  std::vector<std::complex<double>> spec(bins, 0.0);
+  const double gain = std::pow(10.0, room.modal_gain_db / 20.0);
+  const double lx = room.size_m[0], ly = room.size_m[1], lz = room.size_m[2];
+  const int px = static_cast<int>(2.0 * f_max * lx / c) + 1, py = static_cast<int>(2.0 * f_max * ly / c) + 1,
+            pz = static_cast<int>(2.0 * f_max * lz / c) + 1;
+  for (int p = 0; p <= px; ++p) {
+    for (int q = 0; q <= py; ++q) {
+      for (int r = 0; r <= pz; ++r) {
+        const double f = 0.5 * c * std::sqrt(std::pow(p / lx, 2) + std::pow(q / ly, 2) + std::pow(r / lz, 2));
+        if (f < 20.0 || f > f_max) continue;
+        // Morse & Bolt's damping of a rectangular room's mode: each wall pair adds
+        // (c / 16) eps (-ln(1 - a0) - ln(1 - a1)) / L of its axis, eps = 2 where the mode has a
+        // node count along that axis (it meets the walls head-on), 1 where it grazes them. An
+        // oblique mode (every eps 2) decays at Eyring's rate c S (-ln(1 - a)) / 8V in amplitude.
+        int lo;
+        double w;
+        octave_interp(f, &lo, &w);
+        const int index[3] = {p, q, r};
+        double delta = 0.0;
+        for (int a = 0; a < 3; ++a) {
+          double exponent = 0.0;
+          for (int side = 0; side < 2; ++side) {
+            const sim::BandValues& ab = room.absorption[2 * a + side];
+            const double alpha = (1.0 - w) * ab[lo] + w * ab[lo + 1];
+            exponent += -std::log(1.0 - std::min(alpha, 0.999));
+          }
+          delta += c / 16.0 * (index[a] ? 2.0 : 1.0) * exponent / room.size_m[a];
+        }
+        delta *= std::exp(rng.normal(0.0, room.modal_damping_spread)) / room.modal_decay_factor;
+        auto shape = [&](const sim::Vec3& v) {
+          return std::cos(p * kPi * v[0] / lx) * std::cos(q * kPi * v[1] / ly) * std::cos(r * kPi * v[2] / lz);
+        };
+        const double norm = (p ? 2.0 : 1.0) * (q ? 2.0 : 1.0) * (r ? 2.0 : 1.0);  // 1 / Lambda
+        // Amplitudes fade over the top half octave of the modes (a smooth upper edge).
+        const double x = std::clamp(std::log2(f_max / f) / 0.5, 0.0, 1.0);
+        const double taper = 0.5 - 0.5 * std::cos(kPi * x);
+        const double amp = gain * c * c / V * norm * shape(room.source_m) * shape(room.mic_m) * taper;
+        if (amp == 0.0) continue;
+        const double wn2 = std::pow(2.0 * kPi * f, 2);
+        // The mode's transfer function amp / (w_n^2 - w^2 + 2 j delta w): impulse response
+        // amp exp(-delta t) sin(w_d t) / w_d.
+        for (size_t k = 0; k < bins; ++k) {
+          const double wk = 2.0 * kPi * k * df;
+          spec[k] += amp / std::complex<double>(wn2 - wk * wk, 2.0 * delta * wk);
+        }
+      }
+    }
+  }
+  std::vector<std::complex<float>> specf(nfft / 2 + 1, 0.0f);
+  for (size_t k = 0; k < bins; ++k) {
+    const double x = std::clamp(std::log2(k * df / f_max), 0.0, 1.0);
+    specf[k] = std::complex<float>(spec[k] * (0.5 + 0.5 * std::cos(kPi * x)));
+  }
+  specf[0] = 0.0f;
+  std::vector<float> h(nfft);
+  RealFft(nfft).inverse(specf.data(), h.data());
+  // Unnormalised inverse / nfft = h(t) / fs, the same discrete scale as the image sources'
+  // 1 / (4 pi d) per sample.
+  std::vector<double> out(n, 0.0);
+  for (size_t i = 0; i < n && i < nfft; ++i) out[i] = h[i] / static_cast<double>(nfft);
+  return out;
+}
+
 TrueRoom true_room_from(const sim::RoomSpec& stated) {
   TrueRoom t;
   t.size_m = stated.size_m;
@@ -290,6 +367,20 @@ Signal generate_measured_rir(const TrueRoom& room, double fs, size_t n, Rng& rng
           }
         }
       }
+    }
+  }
+  // ---- Modal field: every mode of the true room, added from the direct sound on.
+  if (room.modal_gain_db > -90.0) {
+    const std::vector<double> modal = test_modal_field(room, fs, n, rng);
+    const long shift = std::lround(room.latency_s * fs);
+    for (size_t i = 0; i < n; ++i) {
+      const double t = i / fs - t_direct_abs;
+      if (t <= 0.0) continue;
+      const long j = static_cast<long>(i) - shift;
+      if (j < 0 || j >= static_cast<long>(n)) continue;
+      // The same 2 ms rise as the modal part above (no modal sound before the direct sound).
+      const double rise = t < 2e-3 ? 0.5 - 0.5 * std::cos(kPi * t / 2e-3) : 1.0;
+      out.samples[i] += static_cast<float>(rise * modal[j]);
     }
   }
   return out;

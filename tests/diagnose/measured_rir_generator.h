@@ -20,6 +20,14 @@
 //                and the air's rate added per bin. No calibration against the image energy.
 //   Modal part   (optional) damped sinusoids at the modes of the TRUE room (whose size may differ
 //                from the stated one), random phases, cos mode shapes at the true positions.
+//   Modal field  (optional) a room's modal field as real rooms have it: EVERY mode of the true room
+//                from 20 Hz to somewhat past its Schroeder frequency, each with the amplitude of the
+//                modal Green's function (mode shapes at the true positions, no random jitter) and
+//                its own damping from the walls it meets (Morse & Bolt: an axial mode meets two
+//                walls head-on and grazes the others, so it decays more slowly than an oblique one;
+//                the tail's Eyring rate is an oblique mode's), summed in the FREQUENCY domain as
+//                Lorentzian transfer functions (not the time-domain sum of the old modal part, nor
+//                the simulator's: src/sim/room_modes.h damps every mode at its band's rate).
 //   Source       (optional) a directional source aimed at the true microphone: power pattern
 //                (m + 1) ((1 + cos theta) / 2)^m with m = Q - 1 (power-normalised: its mean over
 //                the sphere is 1, so the diffuse field keeps its level), Q from the on-axis
@@ -56,6 +64,15 @@ struct TrueRoom {
   double mode_gain_db = -100.0;
   double mode_decay_factor = 1.0;
   double mode_max_hz = 180.0;
+  // The modal field (modal_gain_db < -90 = none): level re the modal Green's function, every mode's
+  // damping divided by modal_decay_factor (> 1: less damped than the walls make it) and spread
+  // log-normally per mode by modal_damping_spread (furniture, wall details; natural-log s.d.),
+  // modes up to modal_max_factor x the true room's Schroeder frequency (amplitudes tapered over
+  // the top half octave).
+  double modal_gain_db = -100.0;
+  double modal_decay_factor = 1.0;
+  double modal_damping_spread = 0.2;
+  double modal_max_factor = 1.5;
   // On-axis directivity index of the source per octave band, dB (all 0: an omni source).
   sim::BandValues directivity_db{};
 };
@@ -71,6 +88,13 @@ double test_air_attenuation_db_per_m(double f_hz, double temperature_c, double h
 
 // Eyring energy decay rate (1/s) per octave band of a shoebox, written for the tests.
 sim::BandValues test_eyring_rate_per_s(const TrueRoom& room);
+
+// Schroeder frequency 2000 sqrt(T60 / V) of the true room, T60 of its 125 Hz band (test-side).
+double test_schroeder_hz(const TrueRoom& room);
+
+// The modal field of the true room alone (TrueRoom::modal_*), num_samples long, from the source's
+// emission at t = 0 (no latency, no fade-in); `rng` draws the per-mode damping spread.
+std::vector<double> test_modal_field(const TrueRoom& room, double sample_rate_hz, size_t num_samples, Rng& rng);
 
 // Biquad filters (RBJ audio-EQ cookbook) applied in place, direct form I.
 struct TestBiquad { double b0, b1, b2, a1, a2; };
