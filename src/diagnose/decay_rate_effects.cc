@@ -72,19 +72,19 @@ AirFit fit_air(const std::vector<RateObservation>& obs, double temperature_c, do
 }
 
 DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_modes_detected) {
-  const size_t n = obs.meas.size();
+  const size_t n = obs.size();
   DecayRateAnalysis a;
   a.q.assign(kNumOctaveBands, {});
   std::vector<std::vector<double>> qn(kNumOctaveBands);
   BandValues base{};
   std::vector<int> bands;
-  a.schroeder_hz = median_of(obs.schroeder_hz);
+  a.schroeder_hz = median_of(obs.each([](const RirObservation& r) { return r.schroeder_hz; }));
   for (int b = 0; b < kNumOctaveBands; ++b) {
     size_t ok = 0;
     std::vector<double> rates;
     for (size_t i = 0; i < n; ++i) {
-      const double rm = obs.meas[i].decay_rate_per_s[b], ra = obs.sim_a[i].decay_rate_per_s[b],
-                   rb = obs.sim_b[i].decay_rate_per_s[b];
+      const double rm = obs[i].meas.decay_rate_per_s[b], ra = obs[i].sim_a.decay_rate_per_s[b],
+                   rb = obs[i].sim_b.decay_rate_per_s[b];
       a.q[b].push_back(std::log(rm / ra));
       qn[b].push_back(std::log(rb / ra));
       if (std::isfinite(rm) && std::isfinite(ra) && std::isfinite(rb)) ++ok;
@@ -99,21 +99,21 @@ DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_mode
   }
   // Rooms (absorption is a property of each room, air of the whole campaign).
   std::map<std::string, std::vector<size_t>> groups;
-  for (size_t i = 0; i < n; ++i) groups[room_group(obs.rooms[i])].push_back(i);
+  for (size_t i = 0; i < n; ++i) groups[room_group(obs[i].room)].push_back(i);
   a.num_rooms = groups.size();
   std::map<std::string, BandValues> group_base;
   for (const auto& [g, idx] : groups) {
     for (int b = 0; b < kNumOctaveBands; ++b) {
       std::vector<double> r;
-      for (size_t i : idx) r.push_back(obs.sim_a[i].decay_rate_per_s[b]);
+      for (size_t i : idx) r.push_back(obs[i].sim_a.decay_rate_per_s[b]);
       group_base[g][b] = median_of(r);
     }
   }
   a.t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, a.tested.size() * groups.size()),
                         std::max<double>(2.0, n / std::max<double>(1.0, groups.size()) - 1.0));
   const double min_ratio = std::log(kBandThresholds.min_rate_ratio);
-  const double temp = obs.rooms.empty() ? 20.0 : obs.rooms[0].temperature_c;
-  const double c = obs.rooms.empty() ? 343.0 : obs.rooms[0].speed_of_sound_m_s;
+  const double temp = obs.empty() ? 20.0 : obs[0].room.temperature_c;
+  const double c = obs.empty() ? 343.0 : obs[0].room.speed_of_sound_m_s;
   const std::vector<int>& tested = a.tested;
   const double t_crit = a.t_crit;
 
@@ -206,15 +206,15 @@ DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_mode
 
 sim::BandValues band_absorption_scales(const SetObservations& obs, const std::vector<size_t>& idx, const AirFit& air_fit,
                                        double keep_below_hz) {
-  const double temp = obs.rooms[0].temperature_c, c = obs.rooms[0].speed_of_sound_m_s;
+  const double temp = obs[0].room.temperature_c, c = obs[0].room.speed_of_sound_m_s;
   sim::BandValues scale;
   scale.fill(NAN);
   for (int b = 0; b < kNumOctaveBands; ++b) {
     if (kOctaveCentersHz[b] < keep_below_hz) { scale[b] = 1.0; continue; }
     std::vector<double> q, r;
     for (size_t i : idx) {
-      q.push_back(std::log(obs.meas[i].decay_rate_per_s[b] / obs.sim_a[i].decay_rate_per_s[b]));
-      r.push_back(obs.sim_a[i].decay_rate_per_s[b]);
+      q.push_back(std::log(obs[i].meas.decay_rate_per_s[b] / obs[i].sim_a.decay_rate_per_s[b]));
+      r.push_back(obs[i].sim_a.decay_rate_per_s[b]);
     }
     if (finite_values(q).size() >= std::max<size_t>(1, idx.size() / 2)) {
       const double air_share = air_fit.scale > 0.0 ? air_log_ratio(b, air_fit, median_of(r), temp, c) : 0.0;
@@ -248,8 +248,8 @@ sim::BandValues refine_band_scales(const SetObservations& obs, const std::vector
     std::vector<sim::BandValues> rates(idx.size()), early(idx.size());
     parallel_for(idx.size(), options.num_threads, [&](size_t k) {
       const size_t i = idx[k];
-      const Signal s = render_rir(spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed);
-      const RirFeatures f = compute_features(s, {}, obs.schroeder_hz[i], obs.t60_low_s[i]);
+      const Signal s = render_rir(spec, obs[i].room, options.sample_rate_hz, obs[i].measured.size(), options.seed);
+      const RirFeatures f = obs[i].features_of(s);
       rates[k] = f.decay_rate_per_s;
       early[k] = f.early_decay_rate_per_s;
     });
@@ -259,8 +259,8 @@ sim::BandValues refine_band_scales(const SetObservations& obs, const std::vector
       // whose T30 is dominated by a neighbour's leakage.
       std::vector<double> q, qe;
       for (size_t k = 0; k < idx.size(); ++k) {
-        q.push_back(std::log(obs.meas[idx[k]].decay_rate_per_s[b] / rates[k][b]));
-        qe.push_back(std::log(obs.meas[idx[k]].early_decay_rate_per_s[b] / early[k][b]));
+        q.push_back(std::log(obs[idx[k]].meas.decay_rate_per_s[b] / rates[k][b]));
+        qe.push_back(std::log(obs[idx[k]].meas.early_decay_rate_per_s[b] / early[k][b]));
       }
       if (finite_values(q).size() >= std::max<size_t>(1, idx.size() / 2)) {
         const double late = median_of(q), first = median_of(qe);
@@ -281,9 +281,9 @@ sim::BandValues refine_band_scales(const SetObservations& obs, const std::vector
   return scale;
 }
 
-SetObservations render_band_refitted(const SetObservations& obs, const DiagnoseOptions& options) {
+std::map<std::string, std::string> band_refit_models(const SetObservations& obs, const DiagnoseOptions& options) {
   std::map<std::string, std::vector<size_t>> by_room;
-  for (size_t i = 0; i < obs.rooms.size(); ++i) by_room[room_group(obs.rooms[i])].push_back(i);
+  for (size_t i = 0; i < obs.size(); ++i) by_room[room_group(obs[i].room)].push_back(i);
   std::map<std::string, std::string> spec;
   for (const auto& [room, idx] : by_room) {
     const sim::BandValues scale = refine_band_scales(obs, idx, band_absorption_scales(obs, idx, AirFit{}, 0.0),
@@ -291,13 +291,23 @@ SetObservations render_band_refitted(const SetObservations& obs, const DiagnoseO
     spec[room] = options.baseline_model + "+" + band_absorption_spec(scale);
     log_info("band refit of " + room + ": " + spec[room]);
   }
+  return spec;
+}
+
+const SetObservations& band_refitted(const DecisionContext& ctx) {
+  return ctx.reference(kBandRefittedReference, render_band_refitted);
+}
+
+SetObservations render_band_refitted(const SetObservations& obs, const DiagnoseOptions& options) {
+  const std::map<std::string, std::string> spec = band_refit_models(obs, options);
   SetObservations refit = obs;
-  parallel_for(obs.rooms.size(), options.num_threads, [&](size_t i) {
-    const std::string& s = spec.at(room_group(obs.rooms[i]));
-    const Signal a = render_rir(s, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed);
-    const Signal b = render_rir(s, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed + 1);
-    refit.sim_a[i] = compute_features(a, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
-    refit.sim_b[i] = compute_features(b, obs.mode_freqs_hz[i], obs.schroeder_hz[i], obs.t60_low_s[i]);
+  refit.model_by_room = spec;
+  parallel_for(obs.size(), options.num_threads, [&](size_t i) {
+    const std::string& s = spec.at(room_group(obs[i].room));
+    const Signal a = render_rir(s, obs[i].room, options.sample_rate_hz, obs[i].measured.size(), options.seed);
+    const Signal b = render_rir(s, obs[i].room, options.sample_rate_hz, obs[i].measured.size(), options.seed + 1);
+    refit[i].sim_a = obs[i].features_of(a);
+    refit[i].sim_b = obs[i].features_of(b);
   });
   return refit;
 }

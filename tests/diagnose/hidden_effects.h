@@ -48,6 +48,17 @@ struct HiddenOptions {
   double pre_align_ms = 0.0;
   // room_modes as the whole modal field of the true room (see above), not the few extra modes.
   bool dense_modes = false;
+  // Outside the catalog (measured_rir_generator.h): a coupled volume (a double-slope decay),
+  // flutter echo between the x walls, a room that is not a shoebox (the far y wall 2 x splay_m
+  // wider than the near one, side walls splayed) measured as the stated shoebox. Parameters drawn
+  // after every other draw unless fixed: "coupled_level_db" (-14..-8), "coupled_decay_factor"
+  // (2.5..4), "flutter_level_db" (-12..-6), "flutter_trip_loss_db" (0.5..1.5), "splay_m" (0.6..1.2).
+  // > 0: the last silent_tail_s of every "measured" file is digital silence (a response cut short
+  // and zero-padded, as published sets often are).
+  double silent_tail_s = 0.0;
+  bool coupled_room = false;
+  bool flutter = false;
+  bool non_shoebox = false;
   // Fixed hidden parameters instead of drawn ones (names as in HiddenSet::truth, e.g.
   // "scattering", "peak_to_noise_db", "latency_ms", "mode_gain_db", "absorption_factor_3",
   // "humidity_percent", "temperature_c", "transducer_scale" (multiplies the biquad gains),

@@ -34,10 +34,19 @@
 //                directivity index per octave, interpolated in log frequency per bin. Every image
 //                gets the gain of the direction it leaves the real source in (the image's
 //                direction to the microphone, mirrored back per axis), its scattered energy too.
+//   Outside the catalog of rir-diagnose (what no effect names; tests of what it says then):
+//   Non-shoebox  (optional) a convex prism room (a floor polygon, e.g. splayed side walls): its
+//                image sources by mirroring across its planes with Borish's path check, the diffuse
+//                part with its own volume and surface.
+//   Coupled room (optional) a second diffuse field from the mixing time on, fed back through an
+//                opening from a coupled volume that decays more slowly: a double-slope decay.
+//   Flutter echo (optional) a train of reflections between the two x walls (hard and parallel
+//                while the rest absorbs) every 2 Lx / c, 1 kHz and up.
 //   Transducers  RBJ biquads (peaking, shelving, Butterworth high-pass) in direct form I.
 //   Latency      a fractional delay of the whole response (phase ramp on the early part, and
 //                the diffuse envelope shifted).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -75,7 +84,32 @@ struct TrueRoom {
   double modal_max_factor = 1.5;
   // On-axis directivity index of the source per octave band, dB (all 0: an omni source).
   sim::BandValues directivity_db{};
+  // Not a shoebox: a prism of height size_m[2] over this convex floor polygon (x, y, counter-
+  // clockwise); empty: the shoebox size_m. Each side wall takes the absorption of the shoebox wall
+  // its outward normal is nearest to; the source is omni and there are no modal parts.
+  std::vector<std::array<double, 2>> floor_polygon;
+  // A coupled volume (coupled_level_db < -90 = none): from the mixing time on, a second diffuse
+  // field coupled_level_db below the room's own at the mixing time, decaying coupled_decay_factor
+  // times more slowly in every band.
+  double coupled_level_db = -100.0;
+  double coupled_decay_factor = 3.0;
+  // Flutter echo (flutter_level_db < -90 = none): reflections every 2 Lx / c after the direct
+  // sound, the first flutter_level_db re the direct sound's level at the microphone, each round
+  // trip flutter_trip_loss_db weaker (plus the spreading of the longer path), high-passed at 1 kHz
+  // (fourth order).
+  double flutter_level_db = -100.0;
+  double flutter_trip_loss_db = 1.0;
 };
+
+// An image source of a convex room: its distance to the microphone and the surfaces (absorption
+// indices) of its reflections.
+struct ConvexImage {
+  double distance_m = 0.0;
+  std::vector<int> surfaces;
+};
+// The image sources of a floor-polygon room within max_distance_m of the microphone (the source
+// itself first).
+std::vector<ConvexImage> convex_room_images(const TrueRoom& room, double max_distance_m);
 
 // The stated room as the true one (nothing hidden).
 TrueRoom true_room_from(const sim::RoomSpec& stated);
