@@ -49,7 +49,12 @@ struct StrengthTable {
 };
 // room_modes (room_modes' persistence statistic; strength_table.sh, see main).
 const StrengthTable kModesTable = {{0.0, 1.0}, {-30, 6}};  // MEASURE
-const StrengthTable kDenseTable = {{0.0, 1.0}, {-30, 6}};  // MEASURE
+// Dense modal field, decay factor 1 (2026-11-27, docs/results/diagnose_power.md):
+//   bench/diagnose/strength_table.sh <build> room_modes \
+//     "--decisions-only --effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1" \
+//     "-30 -24 -18 -15 -12 -9 -6 -3 0"
+const StrengthTable kDenseTable = {{0.0236, 0.0260, 0.0396, 0.0591, 0.0921, 0.1405, 0.1989, 0.2593, 0.3124},
+                                   {-30, -24, -18, -15, -12, -9, -6, -3, 0}};
 
 int main(int argc, char** argv) {
   std::set<std::string> effects;

@@ -14,7 +14,8 @@
 # 0.1 + 0.85 K / 3). Power = fraction of sets where the effect is detected; false alarms = fraction
 # of null sets (nothing hidden) reporting the effect, and of hidden-effect sets reporting another.
 # Then the criteria of issue 16, per effect: power >= 90 % at 2x, false alarms on null sets <= 5 %;
-# exit status 1 when one is not met.
+# exit status 1 when one is not met. The probes run --decisions-only (detections are all that is
+# counted; the held-out evaluation does not change them); `unexplained` reports are counted too.
 #   bench/diagnose/power_sweep.sh [build-dir] [seeds per point (5)] [null sets (20)] [raw-dir]
 # (raw-dir keeps the per-set lines; a probe that fails is reported on stderr and not counted.)
 # JOBS=N runs N probes at a time (default: the number of cores).
@@ -60,11 +61,11 @@ done
 run_one() {  # <index> <effect|null> <strength> <seed>
   local out=$tmp/parts/$1
   if [ "$2" = null ]; then
-    "$probe" --count=48 --seed="$4" 2>/dev/null | grep '^seed' > "$out.null" || echo "null set seed $4 failed" >&2
+    "$probe" --count=48 --seed="$4" --decisions-only 2>/dev/null | grep '^seed' > "$out.null" || echo "null set seed $4 failed" >&2
   else
     local hidden=(--effects="$2")
     [ "$2" != room_modes_dense ] || hidden=(--effects=room_modes --dense-modes)
-    "$probe" --count=48 --seed="$4" "${hidden[@]}" --strength="$3" 2>/dev/null | grep '^seed' | sed "s/^/$2 $3 /" > "$out.hidden" ||
+    "$probe" --count=48 --seed="$4" --decisions-only "${hidden[@]}" --strength="$3" 2>/dev/null | grep '^seed' | sed "s/^/$2 $3 /" > "$out.hidden" ||
       echo "$2 $3 seed $4 failed" >&2
   fi
 }

@@ -13,8 +13,9 @@
 //              room's predicted modes, which a dense field or a 5 % size error defeats
 //              (docs/results/diagnose_power.md).
 //   Extension  sim "modes" (src/sim/room_modes.h): the modal sum crossed over with the geometric
-//              part below the Schroeder frequency; decay_scale = median measured / simulated T30
-//              of the bands below twice the Schroeder frequency, level_db from one trial render of
+//              part below the Schroeder frequency; decay_scale = median measured / simulated
+//              decay time (T30, T20 where T30 is not measurable) of the bands below twice the
+//              Schroeder frequency, level_db from one trial render of
 //              the fit RIRs (energy share below the Schroeder frequency, measured / trial).
 #include <algorithm>
 #include <cmath>
@@ -74,7 +75,10 @@ class RoomModesEffect : public Effect {
     std::vector<double> ratio;
     for (size_t i : ctx.fit_index()) {
       for (int b = 0; b < kNumOctaveBands && kOctaveCentersHz[b] < 2.0 * schroeder; ++b) {
-        ratio.push_back(obs[i].meas.t30_s[b] / obs[i].sim_a.t30_s[b]);
+        // Decay rates from T30, or T20 where a slow low band's decay in a short file has too
+        // little dynamic range for T30 (then T30 alone left the fit at 1 for modes decaying 2.5x
+        // more slowly than the walls make them).
+        ratio.push_back(obs[i].sim_a.decay_rate_per_s[b] / obs[i].meas.decay_rate_per_s[b]);
       }
     }
     const double decay_scale = std::clamp(std::isfinite(median_of(ratio)) ? median_of(ratio) : 1.0, 0.5, 4.0);

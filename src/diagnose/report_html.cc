@@ -47,20 +47,7 @@ std::vector<std::vector<double>> spectrogram_db(const Signal& s, double* peak_db
   return out;
 }
 
-}  // namespace
-
-void write_report_html(const Diagnosis& d, const std::string& command_line, std::ostream& out) {
-  out << "<!DOCTYPE html><html><head><meta charset='utf-8'><title>rir-diagnose report</title><style>"
-         "body{font-family:sans-serif;margin:24px;max-width:1150px;color:#222}"
-         "table{border-collapse:collapse;margin:8px 0 18px}td,th{border:1px solid #ccc;padding:4px 8px;font-size:13px;"
-         "vertical-align:top}th{background:#f3f3f3}.yes{color:#b00;font-weight:bold}.no{color:#777}"
-         "code{background:#f5f5f5;padding:1px 4px;font-size:12px;word-break:break-all}.plots svg{margin:4px}"
-         "</style></head><body>\n";
-  out << "<h1>rir-diagnose report</h1>\n<p>" << d.num_rirs << " measured RIRs analysed at " << num(d.sample_rate_hz, 6)
-      << " Hz against the baseline model <code>" << html_escape(d.baseline_model) << "</code>; fit on " << d.fit_ids.size()
-      << " RIRs, evaluated on " << d.eval_ids.size() << " held-out RIRs; " << num(d.seconds, 3) << " s.</p>\n";
-  out << "<p>Command: <code>" << html_escape(command_line) << "</code></p>\n";
-
+void write_findings_section(const Diagnosis& d, std::ostream& out) {
   out << "<h2>Findings</h2>\n<p>Each decision is a test over the whole set of paired differences (measured minus "
          "simulated), calibrated against the same statistic between two simulation seeds (null).</p>"
          "<table><tr><th>effect</th><th>detected</th><th>confidence</th><th>statistic (null)</th><th>evidence</th>"
@@ -79,7 +66,11 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
     out << "</td><td>" << html_escape(f.held_out) << "</td></tr>\n";
   }
   out << "</table>\n";
+}
 
+// The gain table against both baselines, the metrics made worse, and what each effect adds beyond
+// the band refit.
+void write_gain_section(const Diagnosis& d, std::ostream& out) {
   out << "<h2>Gain on held-out RIRs</h2>\n<p>Mean absolute error over the eval ids (lower is better); gain = baseline "
          "- extended with the standard error of the paired per-RIR differences. Extended model";
   std::map<std::string, int> distinct;
@@ -127,13 +118,9 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
         << "</td><td>" << html_escape(join_names(g.worse)) << "</td></tr>\n";
   }
   out << "</table>\n";
+}
 
-  // Each effect's plots over the set, in catalog order.
-  const auto& effects = (d.registry ? *d.registry : effect_registry()).effects();
-  out << "<h2>Per-band departures (fit RIRs)</h2><div class='plots'>\n";
-  for (size_t k = 0; k < effects.size() && k < d.findings.size(); ++k) effects[k]->report_set(d.findings[k], d, out);
-  out << "</div>\n";
-
+void write_examples_section(const Diagnosis& d, const std::vector<std::unique_ptr<Effect>>& effects, std::ostream& out) {
   for (const ExampleCurves& ex : d.examples) {
     out << "<h2>Held-out example <code>" << html_escape(ex.id) << "</code></h2><div class='plots'>\n";
     double pm, pb, pe;
@@ -162,6 +149,31 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
     for (const auto& effect : effects) effect->report_example(ex, out);
     out << "</div>\n";
   }
+  out << "</body></html>\n";
+}
+
+}  // namespace
+
+void write_report_html(const Diagnosis& d, const std::string& command_line, std::ostream& out) {
+  out << "<!DOCTYPE html><html><head><meta charset='utf-8'><title>rir-diagnose report</title><style>"
+         "body{font-family:sans-serif;margin:24px;max-width:1150px;color:#222}"
+         "table{border-collapse:collapse;margin:8px 0 18px}td,th{border:1px solid #ccc;padding:4px 8px;font-size:13px;"
+         "vertical-align:top}th{background:#f3f3f3}.yes{color:#b00;font-weight:bold}.no{color:#777}"
+         "code{background:#f5f5f5;padding:1px 4px;font-size:12px;word-break:break-all}.plots svg{margin:4px}"
+         "</style></head><body>\n";
+  out << "<h1>rir-diagnose report</h1>\n<p>" << d.num_rirs << " measured RIRs analysed at " << num(d.sample_rate_hz, 6)
+      << " Hz against the baseline model <code>" << html_escape(d.baseline_model) << "</code>; fit on " << d.fit_ids.size()
+      << " RIRs, evaluated on " << d.eval_ids.size() << " held-out RIRs; " << num(d.seconds, 3) << " s.</p>\n";
+  out << "<p>Command: <code>" << html_escape(command_line) << "</code></p>\n";
+
+  write_findings_section(d, out);
+  write_gain_section(d, out);
+  // Each effect's plots over the set, in catalog order.
+  const auto& effects = (d.registry ? *d.registry : effect_registry()).effects();
+  out << "<h2>Per-band departures (fit RIRs)</h2><div class='plots'>\n";
+  for (size_t k = 0; k < effects.size() && k < d.findings.size(); ++k) effects[k]->report_set(d.findings[k], d, out);
+  out << "</div>\n";
+  write_examples_section(d, effects, out);
   out << "</body></html>\n";
 }
 
