@@ -29,6 +29,7 @@
 #include "sim/model.h"
 #include "measured_rir_generator.h"
 #include "hidden_effects.h"
+#include "probe_args.h"
 #include "util/strings.h"
 
 using namespace tsrir;
@@ -50,50 +51,30 @@ struct StrengthTable {
 // room_modes (room_modes' persistence statistic; strength_table.sh, see main).
 const StrengthTable kModesTable = {{0.0, 1.0}, {-30, 6}};  // MEASURE
 // Dense modal field, decay factor 1 (2026-11-27, docs/results/diagnose_power.md):
-//   bench/diagnose/strength_table.sh <build> room_modes \
-//     "--decisions-only --effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1" \
+//   bench/diagnose/strength_table.sh <build> room_modes
+//     "--decisions-only --effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1"
 //     "-30 -24 -18 -15 -12 -9 -6 -3 0"
 const StrengthTable kDenseTable = {{0.0236, 0.0260, 0.0396, 0.0591, 0.0921, 0.1405, 0.1989, 0.2593, 0.3124},
                                    {-30, -24, -18, -15, -12, -9, -6, -3, 0}};
 
 int main(int argc, char** argv) {
-  std::set<std::string> effects;
-  uint64_t seed = 1;
-  size_t count = 24;
+  bench::SetArgs set_args;
+  set_args.count = 24;
   bool verbose = false;
   bool decisions_only = false;
   double strength = -1.0;
   double gas_scattering = -1.0;
   std::string write_set;
-  testing::HiddenOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const std::string& key) { return a.rfind(key, 0) == 0 ? a.substr(key.size()) : std::string(); };
-    if (!value("--effects=").empty()) {
-      std::stringstream s(value("--effects="));
-      std::string e;
-      while (std::getline(s, e, ',')) if (!e.empty()) effects.insert(e);
-    } else if (!value("--seed=").empty()) {
-      seed = std::strtoull(value("--seed=").c_str(), nullptr, 10);
-    } else if (!value("--count=").empty()) {
-      count = std::strtoul(value("--count=").c_str(), nullptr, 10);
-    } else if (!value("--fix=").empty()) {
-      std::stringstream s(value("--fix="));
-      std::string kv;
-      while (std::getline(s, kv, ',')) {
-        const size_t eq = kv.find('=');
-        if (eq == std::string::npos) { std::cerr << "bad --fix entry " << kv << "\n"; return 2; }
-        options.fixed[kv.substr(0, eq)] = std::stod(kv.substr(eq + 1));
-      }
-    } else if (!value("--highpass-hz=").empty()) {
-      options.highpass_hz = std::stod(value("--highpass-hz="));
-    } else if (!value("--position-error-m=").empty()) {
-      options.position_error_m = std::stod(value("--position-error-m="));
-    } else if (!value("--size-error=").empty()) {
-      options.size_error = std::stod(value("--size-error="));
-    } else if (!value("--pre-align-ms=").empty()) {
-      options.pre_align_ms = std::stod(value("--pre-align-ms="));
-    } else if (!value("--gas-scattering=").empty()) {
+    try {
+      if (bench::parse_set_arg(a, &set_args)) continue;
+    } catch (const std::exception& e) {
+      std::cerr << e.what() << "\n";
+      return 2;
+    }
+    if (!value("--gas-scattering=").empty()) {
       gas_scattering = std::stod(value("--gas-scattering="));
     } else if (!value("--strength=").empty()) {
       strength = std::stod(value("--strength="));
@@ -101,14 +82,6 @@ int main(int argc, char** argv) {
       write_set = value("--write-set=");
     } else if (a == "--decisions-only") {
       decisions_only = true;
-    } else if (a == "--dense-modes") {
-      options.dense_modes = true;
-    } else if (a == "--coupled-room") {
-      options.coupled_room = true;
-    } else if (a == "--flutter") {
-      options.flutter = true;
-    } else if (a == "--non-shoebox") {
-      options.non_shoebox = true;
     } else if (a == "--verbose") {
       verbose = true;
     } else {
@@ -116,7 +89,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const auto rooms = testing::make_test_rooms(count, 77 + seed);
+  const std::set<std::string>& effects = set_args.effects;
+  const uint64_t seed = set_args.seed;
+  testing::HiddenOptions& options = set_args.options;
+  const auto rooms = testing::make_test_rooms(set_args.count, 77 + seed);
   if (strength >= 0.0) {
     if (effects.size() != 1) { std::cerr << "--strength needs exactly one effect\n"; return 2; }
     const std::string e = *effects.begin();
@@ -163,16 +139,14 @@ int main(int argc, char** argv) {
       // The dense modal field decaying as its walls damp it (decay factor 1), at the level whose
       // persistence statistic is k x 0.07 (the threshold), interpolated in this table of the
       // statistic against the level (dB re the modal Green's function), the mean over seeds 1-4:
-      //   bench/diagnose/strength_table.sh build room_modes \
-      //     "--effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1" "<levels>"
+      //   bench/diagnose/strength_table.sh build room_modes "--effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1" "<levels>"
       options.fixed["modal_gain_db"] = parameter_for_statistic(kDenseTable.stat, kDenseTable.level, 0.07 * k);
       options.fixed["modal_decay_factor"] = 1.0;
     } else if (e == "room_modes") {
       // Modes decaying 2x the room's low-band T60 at the level whose persistence statistic is
       // k x 0.07 (the threshold), interpolated in this table of the statistic against the level
       // (dB re the generator's nominal modal level), the mean over seeds 1-4, 48 RIRs each:
-      //   bench/diagnose/strength_table.sh build room_modes \
-      //     "--effects=room_modes --fix=mode_gain_db=%G,mode_decay_factor=2" "<levels>"
+      //   bench/diagnose/strength_table.sh build room_modes "--effects=room_modes --fix=mode_gain_db=%G,mode_decay_factor=2" "<levels>"
       options.fixed["mode_gain_db"] = parameter_for_statistic(kModesTable.stat, kModesTable.level, 0.07 * k);
       options.fixed["mode_decay_factor"] = 2.0;
     } else if (e == "source_directivity") {

@@ -9,7 +9,7 @@
 //                +-10 Hz; measured - simulated, dB;
 //   persistence  today's statistic (rir_features.h) restricted to the band; measured - simulated;
 // with the predicted modes' count and mean spacing against the window width.
-//   modes_statistics --seed=N [--count=48] [--effects=a,b] [--dense-modes] [--fix=name=value,...]
+//   modes_statistics --seed=N [--count=48] [the set arguments of probe_args.h]
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -22,6 +22,7 @@
 #include "diagnose/set_statistics.h"
 #include "dsp/fft.h"
 #include "hidden_effects.h"
+#include "probe_args.h"
 #include "sim/model.h"
 #include "sim/room_modes.h"
 #include "util/parallel.h"
@@ -82,38 +83,22 @@ double persistence(const Signal& s, double lo, double hi) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::set<std::string> effects;
-  uint64_t seed = 1;
-  size_t count = 48;
-  testing::HiddenOptions options;
+  bench::SetArgs args;
+  args.count = 48;
   for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](const std::string& key) { return a.rfind(key, 0) == 0 ? a.substr(key.size()) : std::string(); };
-    if (!value("--effects=").empty()) {
-      std::stringstream s(value("--effects="));
-      std::string e;
-      while (std::getline(s, e, ',')) if (!e.empty()) effects.insert(e);
-    } else if (!value("--seed=").empty()) {
-      seed = std::strtoull(value("--seed=").c_str(), nullptr, 10);
-    } else if (!value("--count=").empty()) {
-      count = std::strtoul(value("--count=").c_str(), nullptr, 10);
-    } else if (a == "--dense-modes") {
-      options.dense_modes = true;
-    } else if (!value("--fix=").empty()) {
-      std::stringstream s(value("--fix="));
-      std::string kv;
-      while (std::getline(s, kv, ',')) {
-        const size_t eq = kv.find('=');
-        if (eq == std::string::npos) { std::cerr << "bad --fix entry " << kv << "\n"; return 2; }
-        options.fixed[kv.substr(0, eq)] = std::stod(kv.substr(eq + 1));
-      }
-    } else {
-      std::cerr << "unknown argument " << a << "\n";
+    try {
+      if (bench::parse_set_arg(argv[i], &args)) continue;
+    } catch (const std::exception& e) {
+      std::cerr << e.what() << "\n";
       return 2;
     }
+    std::cerr << "unknown argument " << argv[i] << "\n";
+    return 2;
   }
+  const uint64_t seed = args.seed;
+  const size_t count = args.count;
   const auto rooms = testing::make_test_rooms(count, 77 + seed);
-  const testing::HiddenSet set = testing::make_hidden_set(rooms, effects, seed, 16000.0, 1.0, options);
+  const testing::HiddenSet set = testing::make_hidden_set(rooms, args.effects, seed, 16000.0, 1.0, args.options);
   const sim::Model gas = sim::Model::parse("gas");
   const sim::RoomSpec prepared = gas.prepare_room(rooms.front());
   const double schroeder = sim::schroeder_frequency_hz(prepared);
