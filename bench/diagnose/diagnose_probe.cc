@@ -48,8 +48,13 @@ double parameter_for_statistic(const std::vector<double>& stat, const std::vecto
 struct StrengthTable {
   std::vector<double> stat, level;
 };
-// room_modes (room_modes' persistence statistic; strength_table.sh, see main).
-const StrengthTable kModesTable = {{0.0, 1.0}, {-30, 6}};  // MEASURE
+// room_modes, the generator's few extra modes decaying 2x the room's low-band T60 (2026-11-27,
+// docs/results/diagnose_power.md; 2 cores, load 9-15):
+//   bench/diagnose/strength_table.sh <build> room_modes
+//     "--decisions-only --effects=room_modes --fix=mode_gain_db=%G,mode_decay_factor=2"
+//     "-24 -18 -12 -9 -6 -3 0 3 6"
+const StrengthTable kModesTable = {{0.0295, 0.0711, 0.1479, 0.1917, 0.2334, 0.2714, 0.3029, 0.3274, 0.3457},
+                                   {-24, -18, -12, -9, -6, -3, 0, 3, 6}};
 // Dense modal field, decay factor 1 (2026-11-27, docs/results/diagnose_power.md):
 //   bench/diagnose/strength_table.sh <build> room_modes
 //     "--decisions-only --effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1"
