@@ -155,6 +155,31 @@ double bend_departure(const Views& x, const Views& y, size_t k) {
   return sag;
 }
 
+// The decay-shape bands (indices into kShapeBands) whose own early decay rate (EDT, the set's
+// median) is within kMaxNeighbourRateRatio of both neighbouring octaves'. A band next to a much
+// more slowly decaying one measures a double slope from its filter's leakage alone (its EDT is its
+// own decay, its late EDC the neighbour's), and the refit of a large per-band absorption error
+// (the tests' draws: factors 0.55-2.5 per band) leaves that bend in the departure: 4.0-5.5 dB,
+// as much as a coupled volume's (docs/results/diagnose_power.md). A coupled volume slows every
+// band alike, so its bands stay.
+constexpr double kMaxNeighbourRateRatio = 1.5;
+std::vector<size_t> bands_without_slow_neighbour(const SetObservations& obs) {
+  std::array<double, kNumOctaveBands> rate{};
+  for (int b = 0; b < kNumOctaveBands; ++b) {
+    rate[b] = median_of(obs.each([b](const RirObservation& r) { return r.meas.early_decay_rate_per_s[b]; }));
+  }
+  std::vector<size_t> kept;
+  for (size_t k = 0; k < kShapeBands.size(); ++k) {
+    const int b = kShapeBands[k];
+    bool slow_neighbour = false;
+    for (int nb : {b - 1, b + 1}) {
+      if (nb >= 0 && nb < kNumOctaveBands && std::isfinite(rate[nb]) && rate[nb] * kMaxNeighbourRateRatio < rate[b]) slow_neighbour = true;
+    }
+    if (!slow_neighbour) kept.push_back(k);
+  }
+  return kept;
+}
+
 struct ViewDecision {
   bool departs = false;
   double worst_ratio = 0.0;  // |mean| / threshold of the cell that departs most
@@ -211,20 +236,22 @@ UnexplainedCheck check_unexplained(const SetObservations& obs, const std::map<st
   });
   UnexplainedCheck out;
   const UnexplainedThresholds& thr = kUnexplainedThresholds;
-  // Decay shape: one cell per band.
-  std::vector<std::vector<double>> d(kShapeBands.size()), e(kShapeBands.size());
+  // Decay shape: one cell per band whose octave filter does not mix in a much slower neighbour.
+  const std::vector<size_t> shape_bands = bands_without_slow_neighbour(obs);
+  std::vector<std::vector<double>> d(shape_bands.size()), e(shape_bands.size());
   for (size_t i = 0; i < n; ++i) {
-    for (size_t k = 0; k < kShapeBands.size(); ++k) {
-      d[k].push_back(bend_departure(m[i], a[i], k));
-      e[k].push_back(bend_departure(b[i], a[i], k));
+    for (size_t c = 0; c < shape_bands.size(); ++c) {
+      d[c].push_back(bend_departure(m[i], a[i], shape_bands[c]));
+      e[c].push_back(bend_departure(b[i], a[i], shape_bands[c]));
     }
   }
   // One-sided: the measurement's decay bends more than the model's (a double slope, a floor the
   // model lacks). The other way round is the model's own octave leakage (a fast band next to a slow
   // one measures convex in the simulation), which catalog sets with a per-band absorption error show.
   const ViewDecision shape = decide_cells(d, e, thr.min_bend_db, +1);
-  const size_t band = static_cast<size_t>(shape.where.front().second);
-  const double bend = mean_of(d[band]);
+  const size_t cell = static_cast<size_t>(shape.where.front().second);
+  const size_t band = shape_bands.empty() ? 0 : shape_bands[cell];
+  const double bend = shape_bands.empty() ? NAN : mean_of(d[cell]);
   // Late periodicity: one cell.
   std::vector<std::vector<double>> pd(1), pe(1), lag(1);
   for (size_t i = 0; i < n; ++i) {

@@ -8,7 +8,9 @@
 //   decay shape       per octave band (500 Hz-4 kHz), how the energy decay curve bends: the
 //                     departure D(t) (measured - model, dB) of the energy decay curve at 50-600 ms
 //                     after the onset, and how far it sags below its chord (a wrong decay rate makes
-//                     D a straight line; a double slope or a late floor make it sag);
+//                     D a straight line; a double slope or a late floor make it sag); a band next
+//                     to a much more slowly decaying one is left out (its filter's leakage alone
+//                     makes a double slope);
 //   late periodicity  the largest autocorrelation, at lags of 10-60 ms, of the 1-6 kHz energy
 //                     envelope between 80 and 600 ms after the onset, detrended (flutter echo);
 //   early pattern     whether the measured reflections arrive where the model's do: the broadband

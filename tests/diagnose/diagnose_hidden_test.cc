@@ -184,7 +184,9 @@ TEST_P(HiddenEffectTest, DetectsExactlyTheHiddenEffectsAndTheExtensionHelps) {
   // Metrics are evaluated where the measurement is above digital silence: the tail level's error
   // is a level difference of responses, never that of a zero-padded end (190 dB before).
   for (const auto& g : d.gains) {
-    if (g.name == "tail_level") EXPECT_LT(g.baseline, 80.0) << c.name;
+    if (g.name == "tail_level") {
+      EXPECT_LT(g.baseline, 80.0) << c.name;
+    }
   }
   for (const std::string& effect : expected) {
     if (!detected.count(effect) || c.unasserted.count(effect)) continue;
