@@ -2,6 +2,9 @@
 // per set: which effects were detected, with their statistics (for sweeps; see power_sweep.sh).
 //   diagnose_probe --effects=a,b --seed=N [--count=24] [--fix=name=value,...] [--highpass-hz=F]
 //                  [--position-error-m=E] [--size-error=E] [--pre-align-ms=T] [--verbose]
+//                  [--dense-modes]   (room_modes hidden as the true room's whole modal field)
+//                  [--coupled-room] [--flutter] [--non-shoebox]  (outside the catalog: hidden_effects.h)
+//                  [--decisions-only] (no held-out evaluation: the sweeps count detections only)
 //                  [--gas-scattering=S]  (the self-consistency check of the scattering fit:
 //                                    "measured" = the baseline simulator itself with scattering S)
 //                  [--strength=K]   (one effect: its hidden parameter set so that its nominal
@@ -26,6 +29,7 @@
 #include "sim/model.h"
 #include "measured_rir_generator.h"
 #include "hidden_effects.h"
+#include "probe_args.h"
 #include "util/strings.h"
 
 using namespace tsrir;
@@ -40,48 +44,49 @@ double parameter_for_statistic(const std::vector<double>& stat, const std::vecto
   return parameter.back();
 }
 
+// A measured strength table: the statistic (increasing) at each level of the hidden parameter.
+struct StrengthTable {
+  std::vector<double> stat, level;
+};
+// room_modes, the generator's few extra modes decaying 2x the room's low-band T60 (2026-11-27,
+// docs/results/diagnose_power.md; 2 cores, load 9-15):
+//   bench/diagnose/strength_table.sh <build> room_modes
+//     "--decisions-only --effects=room_modes --fix=mode_gain_db=%G,mode_decay_factor=2"
+//     "-24 -18 -12 -9 -6 -3 0 3 6"
+const StrengthTable kModesTable = {{0.0295, 0.0711, 0.1479, 0.1917, 0.2334, 0.2714, 0.3029, 0.3274, 0.3457},
+                                   {-24, -18, -12, -9, -6, -3, 0, 3, 6}};
+// Dense modal field, decay factor 1 (2026-11-27, docs/results/diagnose_power.md):
+//   bench/diagnose/strength_table.sh <build> room_modes
+//     "--decisions-only --effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1"
+//     "-30 -24 -18 -15 -12 -9 -6 -3 0"
+const StrengthTable kDenseTable = {{0.0236, 0.0260, 0.0396, 0.0591, 0.0921, 0.1405, 0.1989, 0.2593, 0.3124},
+                                   {-30, -24, -18, -15, -12, -9, -6, -3, 0}};
+
 int main(int argc, char** argv) {
-  std::set<std::string> effects;
-  uint64_t seed = 1;
-  size_t count = 24;
+  bench::SetArgs set_args;
+  set_args.count = 24;
   bool verbose = false;
+  bool decisions_only = false;
   double strength = -1.0;
   double gas_scattering = -1.0;
   std::string write_set;
-  testing::HiddenOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const std::string& key) { return a.rfind(key, 0) == 0 ? a.substr(key.size()) : std::string(); };
-    if (!value("--effects=").empty()) {
-      std::stringstream s(value("--effects="));
-      std::string e;
-      while (std::getline(s, e, ',')) if (!e.empty()) effects.insert(e);
-    } else if (!value("--seed=").empty()) {
-      seed = std::strtoull(value("--seed=").c_str(), nullptr, 10);
-    } else if (!value("--count=").empty()) {
-      count = std::strtoul(value("--count=").c_str(), nullptr, 10);
-    } else if (!value("--fix=").empty()) {
-      std::stringstream s(value("--fix="));
-      std::string kv;
-      while (std::getline(s, kv, ',')) {
-        const size_t eq = kv.find('=');
-        if (eq == std::string::npos) { std::cerr << "bad --fix entry " << kv << "\n"; return 2; }
-        options.fixed[kv.substr(0, eq)] = std::stod(kv.substr(eq + 1));
-      }
-    } else if (!value("--highpass-hz=").empty()) {
-      options.highpass_hz = std::stod(value("--highpass-hz="));
-    } else if (!value("--position-error-m=").empty()) {
-      options.position_error_m = std::stod(value("--position-error-m="));
-    } else if (!value("--size-error=").empty()) {
-      options.size_error = std::stod(value("--size-error="));
-    } else if (!value("--pre-align-ms=").empty()) {
-      options.pre_align_ms = std::stod(value("--pre-align-ms="));
-    } else if (!value("--gas-scattering=").empty()) {
+    try {
+      if (bench::parse_set_arg(a, &set_args)) continue;
+    } catch (const std::exception& e) {
+      std::cerr << e.what() << "\n";
+      return 2;
+    }
+    if (!value("--gas-scattering=").empty()) {
       gas_scattering = std::stod(value("--gas-scattering="));
     } else if (!value("--strength=").empty()) {
       strength = std::stod(value("--strength="));
     } else if (!value("--write-set=").empty()) {
       write_set = value("--write-set=");
+    } else if (a == "--decisions-only") {
+      decisions_only = true;
     } else if (a == "--verbose") {
       verbose = true;
     } else {
@@ -89,7 +94,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const auto rooms = testing::make_test_rooms(count, 77 + seed);
+  const std::set<std::string>& effects = set_args.effects;
+  const uint64_t seed = set_args.seed;
+  testing::HiddenOptions& options = set_args.options;
+  const auto rooms = testing::make_test_rooms(set_args.count, 77 + seed);
   if (strength >= 0.0) {
     if (effects.size() != 1) { std::cerr << "--strength needs exactly one effect\n"; return 2; }
     const std::string e = *effects.begin();
@@ -132,14 +140,19 @@ int main(int argc, char** argv) {
       // (broadband): the binding condition of the decision is the measured late decay being flat
       // below 3 dB (the paired difference, < -6 dB, is met long before).
       options.fixed["noise_late_decay_db"] = 3.0 / std::max(k, 1e-3);
+    } else if (e == "room_modes" && options.dense_modes) {
+      // The dense modal field decaying as its walls damp it (decay factor 1), at the level whose
+      // persistence statistic is k x 0.07 (the threshold), interpolated in this table of the
+      // statistic against the level (dB re the modal Green's function), the mean over seeds 1-4:
+      //   bench/diagnose/strength_table.sh build room_modes "--effects=room_modes --dense-modes --fix=modal_gain_db=%G,modal_decay_factor=1" "<levels>"
+      options.fixed["modal_gain_db"] = parameter_for_statistic(kDenseTable.stat, kDenseTable.level, 0.07 * k);
+      options.fixed["modal_decay_factor"] = 1.0;
     } else if (e == "room_modes") {
-      // Modes decaying 2x the room's low-band T60 at the level whose mode-prominence statistic is
-      // k x 0.25 dB (the threshold), interpolated in this table of the statistic against the level
+      // Modes decaying 2x the room's low-band T60 at the level whose persistence statistic is
+      // k x 0.07 (the threshold), interpolated in this table of the statistic against the level
       // (dB re the generator's nominal modal level), the mean over seeds 1-4, 48 RIRs each:
-      //   diagnose_probe --count=48 --seed=S --effects=room_modes --fix=mode_gain_db=G,mode_decay_factor=2
-      options.fixed["mode_gain_db"] =
-          parameter_for_statistic({0.067, 0.090, 0.136, 0.230, 0.372, 0.490, 0.620, 0.741, 0.865, 0.950, 1.022},
-                                  {-30, -24, -20, -16, -12, -9, -6, -3, 0, 3, 6}, 0.25 * k);
+      //   bench/diagnose/strength_table.sh build room_modes "--effects=room_modes --fix=mode_gain_db=%G,mode_decay_factor=2" "<levels>"
+      options.fixed["mode_gain_db"] = parameter_for_statistic(kModesTable.stat, kModesTable.level, 0.07 * k);
       options.fixed["mode_decay_factor"] = 2.0;
     } else if (e == "source_directivity") {
       // The same directivity index in every band, k dB (threshold 1 dB).
@@ -195,16 +208,21 @@ int main(int argc, char** argv) {
   }
   diagnose::DiagnoseOptions dopt;
   dopt.num_threads = 2;
+  dopt.held_out_evaluation = !decisions_only;
   const diagnose::Diagnosis d = diagnose::diagnose_set(set.stated, set.measured, dopt);
   std::cout << "seed " << seed << " detected:";
   for (const auto& f : d.findings) if (f.detected) std::cout << " " << f.effect;
+  if (d.unexplained.detected) std::cout << " unexplained";
   std::cout << "\n";
   if (verbose) {
     std::cout << diagnose::diagnosis_summary(d);
     for (const auto& f : d.findings) std::cout << "  " << f.effect << ": " << f.evidence << "\n";
+    std::cout << "  unexplained: " << d.unexplained.evidence << "\n";
     for (const auto& [k, v] : set.truth) std::cout << "  truth " << k << " = " << v << "\n";
   }
-  for (const auto& f : d.findings) {
+  std::vector<diagnose::Finding> all = d.findings;
+  all.push_back(d.unexplained);
+  for (const auto& f : all) {
     std::cout << "stat " << f.effect << " " << f.detected << " " << f.statistic << " " << f.null_statistic << " "
               << f.threshold;
     for (const auto& [k, v] : f.parameters) std::cout << " " << k << "=" << v;

@@ -8,8 +8,9 @@
 //
 // Also here: the band refit (per-room factors on the absorption exponent that match the measured
 // decay, by analysis by synthesis), which band_absorption's extension fits and which other effects
-// decide against (DecisionContext::band_refitted: a decay mismatch is the simpler cause).
+// decide against (band_refitted below: a decay mismatch is the simpler cause).
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -92,8 +93,18 @@ sim::BandValues refine_band_scales(const SetObservations& obs, const std::vector
                                    const std::string& model_prefix, const DiagnoseOptions& options, int iterations,
                                    double keep_below_hz);
 
-// `obs` with seeds A and B re-rendered (features recomputed) with every band's absorption refitted
-// per room (all bands, no air share: band_absorption_scales + 3 refinements).
+// The band refit per room (room_group): the baseline with every band's absorption refitted to the
+// measured decay (all bands, no air share: band_absorption_scales + 3 refinements), as a model
+// spec. What any user would try first; the gain table's second baseline (diagnose.h).
+std::map<std::string, std::string> band_refit_models(const SetObservations& obs, const DiagnoseOptions& options);
+
+// `obs` with seeds A and B re-rendered (features recomputed) with band_refit_models.
 SetObservations render_band_refitted(const SetObservations& obs, const DiagnoseOptions& options);
+
+// The explain-away reference of the effects whose statistic a decay mismatch also moves
+// (source_directivity, transducer_response): render_band_refitted of the fit half, rendered once
+// per decision pass (DecisionContext::reference "band_refitted").
+inline constexpr const char* kBandRefittedReference = "band_refitted";
+const SetObservations& band_refitted(const DecisionContext& ctx);
 
 }  // namespace tsrir::diagnose

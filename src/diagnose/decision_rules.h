@@ -19,12 +19,15 @@ double t_critical(double p, double dof);
 // In [0.5, 1] when detected, [0, 0.49] otherwise: (1 - p) x the effect size re its threshold.
 double confidence_of(double p, double effect, double threshold, bool detected);
 
-// f(a_i) - f(b_i) per RIR.
+// A statistic's paired differences, f(measured) - f(seed A) per RIR.
 template <typename F>
-std::vector<double> paired(const std::vector<RirFeatures>& a, const std::vector<RirFeatures>& b, F f) {
-  std::vector<double> d(a.size());
-  for (size_t i = 0; i < a.size(); ++i) d[i] = f(a[i]) - f(b[i]);
-  return d;
+std::vector<double> measured_minus_sim(const SetObservations& obs, F f) {
+  return obs.each([&](const RirObservation& r) { return f(r.meas) - f(r.sim_a); });
+}
+// Its null calibration, f(seed B) - f(seed A) per RIR.
+template <typename F>
+std::vector<double> seed_b_minus_a(const SetObservations& obs, F f) {
+  return obs.each([&](const RirObservation& r) { return f(r.sim_b) - f(r.sim_a); });
 }
 
 // A paired-mean rule: fires when the mean of d is beyond min_effect in the given direction (+1,

@@ -14,6 +14,10 @@ struct DiagnoseOptions {
   Seed seed = 1;                     // seeds seed (A), seed+1 (B, null calibration), seed+2 (evaluation)
   int num_threads = 2;
   size_t max_scattering_fit_rirs = 24;  // RIRs rendered per scattering value when refitting it
+  // Library callers that need only the decisions (bench/diagnose's sweeps count detections) turn
+  // off the held-out evaluation (gain table, held-out checks, second baseline); not an option of
+  // the program, which always judges its findings.
+  bool held_out_evaluation = true;
 
   // --sample-rate (alias --fs), --model, --seed (alias --random-seed), --num-threads.
   void Register(OptionsItf* opts);

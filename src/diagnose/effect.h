@@ -43,16 +43,19 @@
 //   both files' header comments (source_directivity: transducer_response and diffuse_scattering).
 //   3. Its test: hide it with the independent generator in tests/diagnose and require finding it.
 #pragma once
+#include <functional>
 #include <map>
 #include <memory>
-#include <optional>
 #include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "diagnose/diagnose_options.h"
+#include "diagnose/gain_metrics.h"
+#include "diagnose/observations.h"
 #include "diagnose/rir_features.h"
+#include "diagnose/unexplained.h"
 #include "io/signal.h"
 #include "sim/room.h"
 
@@ -84,50 +87,40 @@ struct Finding {
   double threshold = 0.0;
   std::string statistic_unit;
   std::vector<Threshold> thresholds;  // the effect's (Effect::thresholds), for findings.json
+  // The held-out check of a detected effect's extension (diagnose.cc): "confirmed" (it improves its
+  // gain metric and makes none worse), or what it does instead; empty when not detected.
+  std::string held_out;
   // What the effect's report section plots (per-band curves, ...), by name; not in findings.json.
   std::map<std::string, std::vector<double>> curves;
 };
 
-// Everything the detections and fits look at, per RIR in set order.
-struct SetObservations {
-  std::vector<sim::RoomSpec> rooms;
-  std::vector<Signal> measured;
-  std::vector<Signal> simulated;       // baseline, seed A
-  std::vector<RirFeatures> meas, sim_a, sim_b;
-  std::vector<std::vector<double>> mode_freqs_hz;
-  std::vector<double> schroeder_hz;
-  std::vector<double> t60_low_s;       // stated Eyring T60 at 125 Hz
-  // Cross-equalised early echo densities: {measured, sim A} and {sim B, sim A}.
-  std::vector<std::pair<double, double>> echo_density_meas_a, echo_density_b_a;
-};
-
-// The room a set-up belongs to for per-room refits: its room id when the list gives one, else its
-// dimensions and stated absorption (lines that differ only in positions share a room).
-std::string room_group(const sim::RoomSpec& room);
+// Alternative references the decisions of one pass share (e.g. the same set-ups re-rendered with
+// another model), by name, each rendered once from the fit half (DecisionContext::reference).
+using ReferenceCache = std::map<std::string, SetObservations>;
+using ReferenceRenderer = std::function<SetObservations(const SetObservations& obs, const DiagnoseOptions& options)>;
 
 // What detect() and revise() see: the fit half and the findings of the declared effects.
 class DecisionContext {
  public:
   DecisionContext(const SetObservations& obs, const DiagnoseOptions& options, const std::map<std::string, Finding>& decided,
-                  std::vector<std::string> readable, std::optional<SetObservations>* band_refitted_cache);
+                  std::vector<std::string> readable, ReferenceCache* references);
   const SetObservations& obs() const { return obs_; }
   const DiagnoseOptions& options() const { return options_; }
   // The finding of a declared effect (depends_on, or revised_after in revise()); throws Error for
   // any other, so that every cross-effect rule is declared.
   const Finding& finding(const std::string& effect) const;
   bool detected(const std::string& effect) const { return finding(effect).detected; }
-  // The explain-away baseline of effects whose statistic a decay mismatch also moves: the same
-  // set-ups with seeds A and B re-rendered with every band's absorption refitted, per room, to
-  // the measured decay (decay_rate_effects.h, render_band_refitted). Rendered on first use, shared
-  // by every effect of the pass.
-  const SetObservations& band_refitted() const;
+  // The reference called `name`: render(obs(), options()) on first use in the pass, shared by
+  // every effect after it. The effect that owns a reference names and renders it (e.g.
+  // decay_rate_effects.h: band_refitted); the framework names none.
+  const SetObservations& reference(const std::string& name, const ReferenceRenderer& render) const;
 
  private:
   const SetObservations& obs_;
   const DiagnoseOptions& options_;
   const std::map<std::string, Finding>& decided_;
   std::vector<std::string> readable_;
-  std::optional<SetObservations>* band_refitted_;
+  ReferenceCache* references_;
 };
 
 // The extension of a detected effect: model components ("+name:key=value,...") for every room, or
@@ -171,9 +164,17 @@ class Effect {
   virtual std::string description() const = 0;
   // Its decision's thresholds (--help, findings.json).
   virtual std::vector<Threshold> thresholds() const = 0;
-  // The held-out metric (diagnose.cc's gain table) its extension acts on.
-  virtual std::string gain_metric() const = 0;
+  // The held-out metric (gain_metrics.h) its extension acts on.
+  virtual GainMetricId gain_metric() const = 0;
   virtual std::vector<std::string> depends_on() const { return {}; }
+  // True for an effect whose extension only changes per-band decay rates: the gain table's second
+  // baseline (every band's absorption refitted to the measured decay) already does what it does,
+  // so it has no gain of its own beyond that baseline.
+  virtual bool within_band_refit() const { return false; }
+  // The views of the `unexplained` check (unexplained.h) in which this effect's extension must leave
+  // no departure: when one departs after the fit, the effect is withdrawn (its statistic may have
+  // read a cause outside the catalog).
+  virtual std::vector<ResidualView> residual_views() const { return {}; }
   // The decision on the fit half (ctx.obs()).
   virtual Finding detect(const DecisionContext& ctx) const = 0;
   virtual std::vector<std::string> revised_after() const { return {}; }
@@ -190,8 +191,8 @@ class Effect {
 
 class EffectRegistry {
  public:
-  // Appends an effect (catalog order). Throws Error for a name given twice or a dependency that is
-  // not registered before it.
+  // Appends an effect (catalog order). Throws Error for a name given twice, a dependency that is
+  // not registered before it, or a gain metric that does not exist.
   void add(std::unique_ptr<Effect> effect);
   const std::vector<std::unique_ptr<Effect>>& effects() const { return effects_; }
   const Effect* find(const std::string& name) const;  // nullptr if unknown
@@ -211,11 +212,26 @@ std::string effects_help(const EffectRegistry& registry);
 
 // Decides every effect of the registry on `fit_obs` (detect in registry order, then the
 // revisions and the dependents' re-decisions); findings in registry order.
+// `references` (optional) keeps the pass's references (DecisionContext::reference) for the caller.
+// `withdrawn`: effects decided as usual and then set not detected (with `why` in their evidence),
+// before the effects after them are decided.
 std::vector<Finding> decide_effects(const EffectRegistry& registry, const SetObservations& fit_obs,
-                                    const DiagnoseOptions& options);
+                                    const DiagnoseOptions& options, ReferenceCache* references = nullptr,
+                                    const std::map<std::string, std::string>& withdrawn = {});
 
-// Fits the extensions of the detected effects (registry order) on the fit RIRs of `obs`, writes
-// their parameters into the findings, and returns the extended model spec per room (room_group):
+// Fits the extensions of the detected effects (registry order) on the fit RIRs of `obs` and writes
+// their parameters into the findings; one Extension per effect of the registry (empty when not
+// detected).
+std::vector<Extension> fit_effect_extensions(const EffectRegistry& registry, const SetObservations& obs,
+                                             const std::vector<size_t>& fit_index, const DiagnoseOptions& options,
+                                             std::vector<Finding>* findings);
+
+// `base` + the components of the extensions whose index `use` accepts, in registry order, for one
+// room (room_group): its own fit where the extension has one, else the common one.
+std::string model_spec(const std::string& base, const std::vector<Extension>& extensions, const std::string& room,
+                       const std::function<bool(size_t)>& use);
+
+// fit_effect_extensions, assembled: the extended model spec per room (room_group) of `obs`:
 // baseline + each detected effect's components in registry order.
 std::map<std::string, std::string> fit_extensions(const EffectRegistry& registry, const SetObservations& obs,
                                                   const std::vector<size_t>& fit_index, const DiagnoseOptions& options,

@@ -35,7 +35,9 @@ class AirAbsorptionEffect : public Effect {
            "by one ISO 9613-1 curve for all rooms; extension: air (humidity, scale).";
   }
   std::vector<Threshold> thresholds() const override { return kAirThresholds.list(); }
-  std::string gain_metric() const override { return "t30_per_band"; }
+  GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kT30PerBand); }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kLatePeriodicity}; }
+  bool within_band_refit() const override { return true; }
   std::vector<std::string> depends_on() const override { return {"room_modes"}; }
 
   Finding detect(const DecisionContext& ctx) const override {
@@ -81,15 +83,15 @@ class AirAbsorptionEffect : public Effect {
 
   Extension fit(const FitContext& ctx, Finding* finding) const override {
     const SetObservations& obs = ctx.obs();
-    const double temp = obs.rooms[0].temperature_c, c = obs.rooms[0].speed_of_sound_m_s;
+    const double temp = obs[0].room.temperature_c, c = obs[0].room.speed_of_sound_m_s;
     // Humidity and scale refitted on the fit part only.
     std::vector<RateObservation> observations;
     for (const auto& [room, idx] : ctx.fit_by_room()) {
       for (int b = 0; b < kNumOctaveBands; ++b) {
         std::vector<double> q, r;
         for (size_t i : idx) {
-          q.push_back(std::log(obs.meas[i].decay_rate_per_s[b] / obs.sim_a[i].decay_rate_per_s[b]));
-          r.push_back(obs.sim_a[i].decay_rate_per_s[b]);
+          q.push_back(std::log(obs[i].meas.decay_rate_per_s[b] / obs[i].sim_a.decay_rate_per_s[b]));
+          r.push_back(obs[i].sim_a.decay_rate_per_s[b]);
         }
         const OneSampleTest t = t_test(q);
         if (t.n >= 3 && t.n >= 0.8 * idx.size()) {

@@ -34,12 +34,14 @@ class BandAbsorptionEffect : public Effect {
            "(factors on -ln(1 - a)).";
   }
   std::vector<Threshold> thresholds() const override { return kBandThresholds.list(); }
-  std::string gain_metric() const override { return "t30_per_band"; }
+  GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kT30PerBand); }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kLatePeriodicity}; }
+  bool within_band_refit() const override { return true; }
   std::vector<std::string> depends_on() const override { return {"room_modes", "air_absorption"}; }
 
   Finding detect(const DecisionContext& ctx) const override {
     const SetObservations& obs = ctx.obs();
-    const size_t n = obs.meas.size();
+    const size_t n = obs.size();
     const DecayRateAnalysis a = analyse_decay_rates(obs, ctx.detected("room_modes"));
     const double min_ratio = std::log(kBandThresholds.min_rate_ratio);
     const double wr = a.measured.worst_ratio, wrn = a.null.worst_ratio;
@@ -66,7 +68,7 @@ class BandAbsorptionEffect : public Effect {
     std::vector<double>& mean = band.curves["mean_level_delta_db"];
     std::vector<double>& se = band.curves["se_level_delta_db"];
     for (int b = 0; b < kNumOctaveBands; ++b) {
-      const OneSampleTest l = t_test(paired(obs.meas, obs.sim_a, [b](const RirFeatures& f) { return f.level_db[b]; }));
+      const OneSampleTest l = t_test(measured_minus_sim(obs, [b](const RirFeatures& f) { return f.level_db[b]; }));
       mean.push_back(l.n ? l.mean : NAN);
       se.push_back(l.n ? l.standard_error : NAN);
     }
@@ -85,7 +87,7 @@ class BandAbsorptionEffect : public Effect {
     const std::string air_spec = air_fit.scale > 0.0 ? "+air:humidity=" + spec_num(air_fit.humidity_percent) +
                                                            ",scale=" + spec_num(air_fit.scale)
                                                      : std::string();
-    const double keep_below = ctx.detected("room_modes") ? 2.0 * median_of(obs.schroeder_hz) : 0.0;
+    const double keep_below = ctx.detected("room_modes") ? 2.0 * median_of(obs.each([](const RirObservation& r) { return r.schroeder_hz; })) : 0.0;
     Extension ext;
     finding->parameters.clear();
     for (const auto& [room, idx] : ctx.fit_by_room()) {

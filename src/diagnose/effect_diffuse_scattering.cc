@@ -61,14 +61,17 @@ class DiffuseScatteringEffect : public Effect {
            "cross-equalised; extension: scattering (value).";
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
-  std::string gain_metric() const override { return "echo_density"; }
+  GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kEchoDensity); }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kEarlyPattern}; }
   std::vector<std::string> depends_on() const override { return {"source_directivity"}; }
 
   Finding detect(const DecisionContext& ctx) const override {
     const SetObservations& obs = ctx.obs();
     std::vector<double> ed_d, ed_e;
-    for (const auto& [x, y] : obs.echo_density_meas_a) ed_d.push_back(x - y);
-    for (const auto& [x, y] : obs.echo_density_b_a) ed_e.push_back(x - y);
+    for (const RirObservation& r : obs) {
+      ed_d.push_back(r.echo_density_meas_a.first - r.echo_density_meas_a.second);
+      ed_e.push_back(r.echo_density_b_a.first - r.echo_density_b_a.second);
+    }
     const bool directional = ctx.detected("source_directivity");
     Finding f = decide_mean(name(), ed_d, ed_e, kThresholds.min_echo_density, directional ? +1 : 0,
                             "early (2-20 ms) normalised echo density, 1-7 kHz, cross-equalised", "");
@@ -98,8 +101,8 @@ class DiffuseScatteringEffect : public Effect {
       parallel_for(2 * idx.size(), options.num_threads, [&](size_t k) {
         const size_t i = idx[k % idx.size()];
         const Signal s =
-            render_rir(spec, obs.rooms[i], options.sample_rate_hz, obs.measured[i].size(), options.seed + k / idx.size());
-        const auto pair = cross_equalised_echo_density(obs.measured[i], obs.meas[i].onset_s, s, onset_time_s(s));
+            render_rir(spec, obs[i].room, options.sample_rate_hz, obs[i].measured.size(), options.seed + k / idx.size());
+        const auto pair = cross_equalised_echo_density(obs[i].measured, obs[i].meas.onset_s, s, onset_time_s(s));
         ed[k] = pair.first - pair.second;
       });
       got[g] = -mean_of(ed);  // increases with scattering, like the simulated density

@@ -53,17 +53,16 @@ class NoiseFloorEffect : public Effect {
            "simulation's still decays; extension: noise_floor (level, tilt, band edges).";
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
-  std::string gain_metric() const override { return "tail_level"; }
+  GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kTailLevel); }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape}; }
 
   Finding detect(const DecisionContext& ctx) const override {
     const SetObservations& obs = ctx.obs();
     Finding noise = decide_mean(
-        name(), paired(obs.meas, obs.sim_a, [](const RirFeatures& f) { return f.late_decay_db; }),
-        paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.late_decay_db; }), kThresholds.min_db, -1,
+        name(), measured_minus_sim(obs, [](const RirFeatures& f) { return f.late_decay_db; }),
+        seed_b_minus_a(obs, [](const RirFeatures& f) { return f.late_decay_db; }), kThresholds.min_db, -1,
         "decay over the last 30 % of the file (level at 70-80 % minus 90-100 %, 500 Hz-4 kHz median)", "dB");
-    std::vector<double> late;
-    for (const RirFeatures& f : obs.meas) late.push_back(f.late_decay_db);
-    const double flat = median_of(late);
+    const double flat = median_of(obs.each([](const RirObservation& r) { return r.meas.late_decay_db; }));
     if (noise.detected && !(flat < kThresholds.flat_db)) noise.detected = false;
     noise.evidence += " Measured late decay (median over the set) " + num(flat) + " dB; flat below " +
                       num(kThresholds.flat_db) + " dB is required.";
@@ -82,9 +81,9 @@ class NoiseFloorEffect : public Effect {
       // late power.
       std::vector<double> l, flatness;
       for (size_t i : ctx.fit_index()) {
-        const double pm = obs.meas[i].late_power[b] / obs.meas[i].energy;
-        const double ps = obs.sim_a[i].late_power[b] / obs.sim_a[i].energy;
-        flatness.push_back(obs.meas[i].late_decay_band_db[b]);
+        const double pm = obs[i].meas.late_power[b] / obs[i].meas.energy;
+        const double ps = obs[i].sim_a.late_power[b] / obs[i].sim_a.energy;
+        flatness.push_back(obs[i].meas.late_decay_band_db[b]);
         if (std::isfinite(pm) && pm > 4.0 * ps) l.push_back(10.0 * std::log10(pm - ps));
       }
       if (l.size() >= std::max<size_t>(1, ctx.fit_index().size() / 2) && median_of(flatness) < kThresholds.flat_db) {

@@ -4,7 +4,6 @@
 #include <set>
 #include <sstream>
 
-#include "diagnose/decay_rate_effects.h"
 #include "diagnose/decision_rules.h"
 #include "diagnose/effect.h"
 #include "util/error.h"
@@ -49,25 +48,12 @@ std::string wrap(const std::string& text, const std::string& first, const std::s
 
 }  // namespace
 
-std::string room_group(const sim::RoomSpec& room) {
-  if (!room.room_id.empty()) return room.room_id;
-  std::string acoustic;
-  for (const auto& surface : room.absorption) {
-    for (double a : surface) acoustic += format_double(a, 6) + ",";
-  }
-  for (double s : room.scattering) acoustic += format_double(s, 6) + ",";
-  char hash[16];
-  std::snprintf(hash, sizeof hash, "%06llx", static_cast<unsigned long long>(stable_hash(acoustic) & 0xffffff));
-  return "room" + format_double(room.size_m[0], 4) + "x" + format_double(room.size_m[1], 4) + "x" +
-         format_double(room.size_m[2], 4) + "-" + hash;
-}
-
 // ---- contexts
 
 DecisionContext::DecisionContext(const SetObservations& obs, const DiagnoseOptions& options,
                                  const std::map<std::string, Finding>& decided, std::vector<std::string> readable,
-                                 std::optional<SetObservations>* band_refitted_cache)
-    : obs_(obs), options_(options), decided_(decided), readable_(std::move(readable)), band_refitted_(band_refitted_cache) {}
+                                 ReferenceCache* references)
+    : obs_(obs), options_(options), decided_(decided), readable_(std::move(readable)), references_(references) {}
 
 const Finding& DecisionContext::finding(const std::string& effect) const {
   if (!contains(readable_, effect)) undeclared(readable_.empty() ? "?" : readable_.front(), effect);
@@ -76,15 +62,16 @@ const Finding& DecisionContext::finding(const std::string& effect) const {
   return it->second;
 }
 
-const SetObservations& DecisionContext::band_refitted() const {
-  if (!band_refitted_->has_value()) *band_refitted_ = render_band_refitted(obs_, options_);
-  return **band_refitted_;
+const SetObservations& DecisionContext::reference(const std::string& name, const ReferenceRenderer& render) const {
+  auto it = references_->find(name);
+  if (it == references_->end()) it = references_->emplace(name, render(obs_, options_)).first;
+  return it->second;
 }
 
 FitContext::FitContext(const SetObservations& obs, const std::vector<size_t>& fit_index, const DiagnoseOptions& options,
                        const std::vector<Finding>& findings, std::vector<std::string> readable)
     : obs_(obs), fit_index_(fit_index), options_(options), findings_(findings), readable_(std::move(readable)) {
-  for (size_t i : fit_index_) fit_by_room_[room_group(obs_.rooms[i])].push_back(i);
+  for (size_t i : fit_index_) fit_by_room_[room_group(obs_[i].room)].push_back(i);
 }
 
 const Finding& FitContext::finding(const std::string& effect) const {
@@ -108,6 +95,11 @@ void EffectRegistry::add(std::unique_ptr<Effect> effect) {
   if (find(name)) throw Error("rir-diagnose: effect " + name + " registered twice");
   for (const std::string& d : effect->depends_on()) {
     if (!find(d)) throw Error("rir-diagnose: effect " + name + " depends on " + d + ", which is not registered before it");
+  }
+  try {
+    gain_metric(effect->gain_metric());
+  } catch (const std::exception& e) {
+    throw Error("rir-diagnose: effect " + name + " names no gain metric of gain_metrics.h: " + e.what());
   }
   effects_.push_back(std::move(effect));
 }
@@ -147,9 +139,11 @@ std::string effects_help(const EffectRegistry& registry) {
 // ---- dispatch
 
 std::vector<Finding> decide_effects(const EffectRegistry& registry, const SetObservations& obs,
-                                    const DiagnoseOptions& options) {
+                                    const DiagnoseOptions& options, ReferenceCache* references,
+                                    const std::map<std::string, std::string>& withdrawn) {
   std::map<std::string, Finding> decided;
-  std::optional<SetObservations> band_refitted;
+  ReferenceCache local;
+  ReferenceCache* cache = references ? references : &local;
   auto readable = [](const Effect& e, bool revising) {
     std::vector<std::string> r = {e.name()};
     for (const std::string& d : e.depends_on()) r.push_back(d);
@@ -159,15 +153,21 @@ std::vector<Finding> decide_effects(const EffectRegistry& registry, const SetObs
     return r;
   };
   auto decide = [&](const Effect& e) {
-    const DecisionContext ctx(obs, options, decided, readable(e, false), &band_refitted);
+    const DecisionContext ctx(obs, options, decided, readable(e, false), cache);
     Finding f = e.detect(ctx);
     f.effect = e.name();
+    const auto w = withdrawn.find(e.name());
+    if (w != withdrawn.end() && f.detected) {
+      f.detected = false;
+      f.confidence = std::min(f.confidence, 0.49);
+      f.evidence += " Withdrawn: " + w->second;
+    }
     decided[e.name()] = std::move(f);
   };
   for (const auto& e : registry.effects()) decide(*e);
   for (const auto& e : registry.effects()) {
     if (e->revised_after().empty()) continue;
-    const DecisionContext ctx(obs, options, decided, readable(*e, true), &band_refitted);
+    const DecisionContext ctx(obs, options, decided, readable(*e, true), cache);
     Finding revised = decided.at(e->name());
     const bool before = revised.detected;
     e->revise(ctx, &revised);
@@ -190,9 +190,9 @@ std::vector<Finding> decide_effects(const EffectRegistry& registry, const SetObs
   return out;
 }
 
-std::map<std::string, std::string> fit_extensions(const EffectRegistry& registry, const SetObservations& obs,
-                                                  const std::vector<size_t>& fit_index, const DiagnoseOptions& options,
-                                                  std::vector<Finding>* findings) {
+std::vector<Extension> fit_effect_extensions(const EffectRegistry& registry, const SetObservations& obs,
+                                             const std::vector<size_t>& fit_index, const DiagnoseOptions& options,
+                                             std::vector<Finding>* findings) {
   const auto& effects = registry.effects();
   if (findings->size() != effects.size()) throw Error("rir-diagnose: findings do not match the effect registry");
   std::vector<Extension> extensions(effects.size());
@@ -203,16 +203,28 @@ std::map<std::string, std::string> fit_extensions(const EffectRegistry& registry
     const FitContext ctx(obs, fit_index, options, *findings, readable);
     extensions[k] = effects[k]->fit(ctx, &(*findings)[k]);
   }
+  return extensions;
+}
+
+std::string model_spec(const std::string& base, const std::vector<Extension>& extensions, const std::string& room,
+                       const std::function<bool(size_t)>& use) {
+  std::string spec = base;
+  for (size_t k = 0; k < extensions.size(); ++k) {
+    if (!use(k)) continue;
+    const auto it = extensions[k].by_room.find(room);
+    spec += it != extensions[k].by_room.end() ? it->second : extensions[k].common;
+  }
+  return spec;
+}
+
+std::map<std::string, std::string> fit_extensions(const EffectRegistry& registry, const SetObservations& obs,
+                                                  const std::vector<size_t>& fit_index, const DiagnoseOptions& options,
+                                                  std::vector<Finding>* findings) {
+  const std::vector<Extension> extensions = fit_effect_extensions(registry, obs, fit_index, options, findings);
   std::map<std::string, std::string> out;
-  for (const sim::RoomSpec& r : obs.rooms) {
-    const std::string room = room_group(r);
-    std::string spec = options.baseline_model;
-    for (size_t k = 0; k < effects.size(); ++k) {
-      if (!(*findings)[k].detected) continue;
-      const auto it = extensions[k].by_room.find(room);
-      spec += it != extensions[k].by_room.end() ? it->second : extensions[k].common;
-    }
-    out[room] = spec;
+  for (const RirObservation& r : obs) {
+    const std::string room = room_group(r.room);
+    out[room] = model_spec(options.baseline_model, extensions, room, [&](size_t k) { return (*findings)[k].detected; });
   }
   return out;
 }

@@ -13,7 +13,7 @@
 //   Depends    air_absorption, band_absorption: a decay mismatch changes the tail window's level
 //              too (a faster decay leaves less energy in it). When either is detected, the ratio is
 //              decided against simulations with every band's absorption refitted to the measured
-//              decay (DecisionContext::band_refitted), so that only what the decay does not
+//              decay (decay_rate_effects.h: band_refitted), so that only what the decay does not
 //              explain is left (the explain-away order: the decay is the simpler cause).
 //   Extension  sim "directivity" (src/sim/source_directivity.h): DI per band = the median ratio
 //              change over the fit RIRs in the bands the direct window resolves; 0 dB below them
@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "diagnose/decay_rate_effects.h"
 #include "diagnose/decision_rules.h"
 #include "diagnose/diagnose.h"
 #include "diagnose/extension_fit.h"
@@ -43,13 +44,15 @@ struct SourceDirectivityThresholds {
 };
 constexpr SourceDirectivityThresholds kThresholds{};
 
-// Per band: direct-window level minus tail-window level of x minus the same of y, per RIR.
-std::vector<std::vector<double>> ratio_change(const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y,
+// Per band: direct-window level minus tail-window level of x (the measurement, or seed B) minus the
+// same of seed A, per RIR.
+std::vector<std::vector<double>> ratio_change(const SetObservations& obs, RirFeatures RirObservation::*x,
                                               const std::vector<int>& bands) {
   std::vector<std::vector<double>> out(kNumOctaveBands);
   for (int b : bands) {
-    for (size_t i = 0; i < x.size(); ++i) {
-      out[b].push_back((x[i].direct_band_db[b] - x[i].tail_band_db[b]) - (y[i].direct_band_db[b] - y[i].tail_band_db[b]));
+    for (const RirObservation& r : obs) {
+      const RirFeatures& f = r.*x;
+      out[b].push_back((f.direct_band_db[b] - f.tail_band_db[b]) - (r.sim_a.direct_band_db[b] - r.sim_a.tail_band_db[b]));
     }
   }
   return out;
@@ -79,21 +82,22 @@ class SourceDirectivityEffect : public Effect {
            "per band, dB).";
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
-  std::string gain_metric() const override { return "drr"; }
+  GainMetricId gain_metric() const override { return GainMetricId::column("DRR"); }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kEarlyPattern}; }
   std::vector<std::string> depends_on() const override { return {"air_absorption", "band_absorption"}; }
 
   Finding detect(const DecisionContext& ctx) const override {
     const bool decay_refitted = ctx.detected("air_absorption") || ctx.detected("band_absorption");
-    const SetObservations& obs = decay_refitted ? ctx.band_refitted() : ctx.obs();
-    const size_t n = obs.meas.size();
-    const double fs = obs.measured.empty() ? 16000.0 : obs.measured[0].sample_rate_hz;
+    const SetObservations& obs = decay_refitted ? band_refitted(ctx) : ctx.obs();
+    const size_t n = obs.size();
+    const double fs = obs.sample_rate_hz();
     // Bands the direct window resolves and whose decay is measured (a whole octave below Nyquist):
     // a half band at Nyquist has no decay of its own to refit the tail's reference with.
     std::vector<int> bands;
     for (int b = 0; b < kNumOctaveBands; ++b) {
       if (direct_band_reliable(b, fs) && octave_upper_edge_hz(kOctaveCentersHz[b]) <= 0.5 * fs) bands.push_back(b);
     }
-    const auto d = ratio_change(obs.meas, obs.sim_a, bands), e = ratio_change(obs.sim_b, obs.sim_a, bands);
+    const auto d = ratio_change(obs, &RirObservation::meas, bands), e = ratio_change(obs, &RirObservation::sim_b, bands);
     Finding f = decide_mean(name(), band_mean(d, bands, n), band_mean(e, bands, n), kThresholds.min_db, +1,
                             "direct-to-tail level ratio (direct window vs 20-300 ms), mean over the bands the direct "
                             "window resolves",

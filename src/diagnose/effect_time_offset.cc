@@ -43,15 +43,15 @@ class TimeOffsetEffect : public Effect {
            "align_ms).";
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
-  std::string gain_metric() const override { return "onset"; }
+  GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kOnset); }
 
   Finding detect(const DecisionContext& ctx) const override {
     const SetObservations& obs = ctx.obs();
-    const size_t n = obs.meas.size();
+    const size_t n = obs.size();
     Finding offset;
     offset.effect = name();
-    const std::vector<double> d = paired(obs.meas, obs.sim_a, [](const RirFeatures& f) { return f.onset_s * 1e3; });
-    const std::vector<double> e = paired(obs.sim_b, obs.sim_a, [](const RirFeatures& f) { return f.onset_s * 1e3; });
+    const std::vector<double> d = measured_minus_sim(obs, [](const RirFeatures& f) { return f.onset_s * 1e3; });
+    const std::vector<double> e = seed_b_minus_a(obs, [](const RirFeatures& f) { return f.onset_s * 1e3; });
     const double thr = std::max(kThresholds.min_ms, kThresholds.null_mads * median_abs_deviation(e));
     auto rule = [&](const std::vector<double>& x, size_t* k, double* p, double* med) {
       std::vector<double> a;
@@ -82,11 +82,11 @@ class TimeOffsetEffect : public Effect {
     const SetObservations& obs = ctx.obs();
     std::vector<double> x, y, latency, sim_extra;
     for (size_t i : ctx.fit_index()) {
-      const double flight = obs.rooms[i].source_mic_distance_m() / obs.rooms[i].speed_of_sound_m_s;
+      const double flight = obs[i].room.source_mic_distance_m() / obs[i].room.speed_of_sound_m_s;
       x.push_back(flight);
-      y.push_back(obs.meas[i].onset_s);
-      latency.push_back(obs.meas[i].onset_s - obs.sim_a[i].onset_s);
-      sim_extra.push_back(obs.sim_a[i].onset_s - flight);
+      y.push_back(obs[i].meas.onset_s);
+      latency.push_back(obs[i].meas.onset_s - obs[i].sim_a.onset_s);
+      sim_extra.push_back(obs[i].sim_a.onset_s - flight);
     }
     const double mx = mean_of(x), my = mean_of(y);
     double sxy = 0.0, sxx = 0.0;

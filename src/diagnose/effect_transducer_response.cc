@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "diagnose/decay_rate_effects.h"
 #include "diagnose/decision_rules.h"
 #include "diagnose/diagnose.h"
 #include "diagnose/extension_fit.h"
@@ -62,7 +63,7 @@ class TransducerResponseEffect : public Effect {
            "simulation's and the tail's shape agrees; extension: transducer (per-band gains, dB).";
   }
   std::vector<Threshold> thresholds() const override { return kThresholds.list(); }
-  std::string gain_metric() const override { return "level_per_band"; }
+  GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kLevelPerBand); }
   std::vector<std::string> depends_on() const override {
     return {"air_absorption", "band_absorption", "source_directivity"};
   }
@@ -70,10 +71,10 @@ class TransducerResponseEffect : public Effect {
   Finding detect(const DecisionContext& ctx) const override {
     const bool directional = ctx.detected("source_directivity");
     const bool refitted = directional && (ctx.detected("air_absorption") || ctx.detected("band_absorption"));
-    const SetObservations& obs = refitted ? ctx.band_refitted() : ctx.obs();
+    const SetObservations& obs = refitted ? band_refitted(ctx) : ctx.obs();
     const double min_db = refitted ? kThresholds.min_db_band_refitted : kThresholds.min_db;
-    const size_t n = obs.meas.size();
-    const double fs = obs.measured.empty() ? 16000.0 : obs.measured[0].sample_rate_hz;
+    const size_t n = obs.size();
+    const double fs = obs.sample_rate_hz();
     Finding transducer;
     transducer.effect = name();
     std::vector<int> bands;
@@ -87,15 +88,17 @@ class TransducerResponseEffect : public Effect {
       const std::vector<double>& di = ctx.finding("source_directivity").curves.at("di_db");
       for (int b : bands) directivity_db[b] = di[b];
     }
-    auto shapes = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, bool direct, const BandValues& net) {
+    // x: the measurement or seed B, against seed A.
+    auto shapes = [&](RirFeatures RirObservation::*x, bool direct, const BandValues& net) {
       std::vector<std::vector<double>> s(kNumOctaveBands, std::vector<double>(n, NAN));
       for (size_t i = 0; i < n; ++i) {
         double m = 0.0;
         int c = 0;
         BandValues dlt{};
+        const RirFeatures &xi = obs[i].*x, &yi = obs[i].sim_a;
         for (int b : bands) {
-          dlt[b] = direct ? x[i].direct_band_db[b] - y[i].direct_band_db[b] - net[b]
-                          : x[i].tail_band_db[b] - y[i].tail_band_db[b];
+          dlt[b] = direct ? xi.direct_band_db[b] - yi.direct_band_db[b] - net[b]
+                          : xi.tail_band_db[b] - yi.tail_band_db[b];
           if (std::isfinite(dlt[b])) { m += dlt[b]; ++c; }
         }
         if (c == 0) continue;
@@ -104,9 +107,9 @@ class TransducerResponseEffect : public Effect {
       return s;
     };
     const double t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, bands.size()), std::max<double>(2.0, n - 1.0));
-    auto rule = [&](const std::vector<RirFeatures>& x, const std::vector<RirFeatures>& y, const BandValues& net,
-                    double* max_abs, double* corr, double* p_min, int* worst, BandValues* dshape, BandValues* tshape) {
-      const auto ds = shapes(x, y, true, net), ts = shapes(x, y, false, net);
+    auto rule = [&](RirFeatures RirObservation::*x, const BandValues& net, double* max_abs, double* corr, double* p_min,
+                    int* worst, BandValues* dshape, BandValues* tshape) {
+      const auto ds = shapes(x, true, net), ts = shapes(x, false, net);
       std::vector<double> dm, tm;
       bool any = false;
       *max_abs = 0.0;
@@ -128,8 +131,8 @@ class TransducerResponseEffect : public Effect {
     double mx, corr, pmin, mxn, corrn, pminn;
     int worst, worstn;
     BandValues ds{}, ts{}, dsn{}, tsn{};
-    const bool fires = rule(obs.meas, obs.sim_a, directivity_db, &mx, &corr, &pmin, &worst, &ds, &ts);
-    const bool null_fires = rule(obs.sim_b, obs.sim_a, BandValues{}, &mxn, &corrn, &pminn, &worstn, &dsn, &tsn);
+    const bool fires = rule(&RirObservation::meas, directivity_db, &mx, &corr, &pmin, &worst, &ds, &ts);
+    const bool null_fires = rule(&RirObservation::sim_b, BandValues{}, &mxn, &corrn, &pminn, &worstn, &dsn, &tsn);
     transducer.detected = fires && !null_fires;
     transducer.statistic = mx;
     transducer.null_statistic = mxn;
@@ -158,7 +161,7 @@ class TransducerResponseEffect : public Effect {
     for (int b = 0; b < kNumOctaveBands; ++b) {
       if (!direct_band_reliable(b, fs)) continue;
       std::vector<double> d;
-      for (size_t i : ctx.fit_index()) d.push_back(obs.meas[i].direct_band_db[b] - obs.sim_a[i].direct_band_db[b]);
+      for (size_t i : ctx.fit_index()) d.push_back(obs[i].meas.direct_band_db[b] - obs[i].sim_a.direct_band_db[b]);
       gain[b] = median_of(d);
     }
     if (ctx.detected("source_directivity")) {
@@ -174,7 +177,7 @@ class TransducerResponseEffect : public Effect {
     tail_delta.fill(NAN);
     for (int b = 0; b < kNumOctaveBands; ++b) {
       std::vector<double> d;
-      for (size_t i : ctx.fit_index()) d.push_back(obs.meas[i].tail_band_db[b] - obs.sim_a[i].tail_band_db[b]);
+      for (size_t i : ctx.fit_index()) d.push_back(obs[i].meas.tail_band_db[b] - obs[i].sim_a.tail_band_db[b]);
       tail_delta[b] = median_of(d);
     }
     std::vector<double> offset;

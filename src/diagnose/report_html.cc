@@ -14,6 +14,12 @@ namespace {
 
 std::string num(double v, int digits = 3) { return std::isfinite(v) ? format_double(v, digits) : "n/a"; }
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 // Spectrogram in dB: 12.5 ms Hann frames (hop = frame) over up to 0.8 s from the onset region,
 // 48 linear frequency rows up to Nyquist.
 std::vector<std::vector<double>> spectrogram_db(const Signal& s, double* peak_db) {
@@ -41,25 +47,14 @@ std::vector<std::vector<double>> spectrogram_db(const Signal& s, double* peak_db
   return out;
 }
 
-}  // namespace
-
-void write_report_html(const Diagnosis& d, const std::string& command_line, std::ostream& out) {
-  out << "<!DOCTYPE html><html><head><meta charset='utf-8'><title>rir-diagnose report</title><style>"
-         "body{font-family:sans-serif;margin:24px;max-width:1150px;color:#222}"
-         "table{border-collapse:collapse;margin:8px 0 18px}td,th{border:1px solid #ccc;padding:4px 8px;font-size:13px;"
-         "vertical-align:top}th{background:#f3f3f3}.yes{color:#b00;font-weight:bold}.no{color:#777}"
-         "code{background:#f5f5f5;padding:1px 4px;font-size:12px;word-break:break-all}.plots svg{margin:4px}"
-         "</style></head><body>\n";
-  out << "<h1>rir-diagnose report</h1>\n<p>" << d.num_rirs << " measured RIRs analysed at " << num(d.sample_rate_hz, 6)
-      << " Hz against the baseline model <code>" << html_escape(d.baseline_model) << "</code>; fit on " << d.fit_ids.size()
-      << " RIRs, evaluated on " << d.eval_ids.size() << " held-out RIRs; " << num(d.seconds, 3) << " s.</p>\n";
-  out << "<p>Command: <code>" << html_escape(command_line) << "</code></p>\n";
-
+void write_findings_section(const Diagnosis& d, std::ostream& out) {
   out << "<h2>Findings</h2>\n<p>Each decision is a test over the whole set of paired differences (measured minus "
          "simulated), calibrated against the same statistic between two simulation seeds (null).</p>"
          "<table><tr><th>effect</th><th>detected</th><th>confidence</th><th>statistic (null)</th><th>evidence</th>"
-         "<th>fitted parameters</th></tr>\n";
-  for (const Finding& f : d.findings) {
+         "<th>fitted parameters</th><th>held-out check</th></tr>\n";
+  std::vector<Finding> all = d.findings;
+  all.push_back(d.unexplained);
+  for (const Finding& f : all) {
     out << "<tr><td>" << f.effect << "</td><td class='" << (f.detected ? "yes'>yes" : "no'>no") << "</td><td>"
         << num(f.confidence, 2) << "</td><td>" << num(f.statistic) << " (" << num(f.null_statistic) << ") "
         << html_escape(f.statistic_unit) << "</td><td>" << html_escape(f.evidence) << "</td><td>";
@@ -68,10 +63,14 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
       if (k++ == 24) { out << "..."; break; }
       out << html_escape(name) << " = " << num(v, 4) << "<br>";
     }
-    out << "</td></tr>\n";
+    out << "</td><td>" << html_escape(f.held_out) << "</td></tr>\n";
   }
   out << "</table>\n";
+}
 
+// The gain table against both baselines, the metrics made worse, and what each effect adds beyond
+// the band refit.
+void write_gain_section(const Diagnosis& d, std::ostream& out) {
   out << "<h2>Gain on held-out RIRs</h2>\n<p>Mean absolute error over the eval ids (lower is better); gain = baseline "
          "- extended with the standard error of the paired per-RIR differences. Extended model";
   std::map<std::string, int> distinct;
@@ -84,23 +83,44 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
       out << html_escape(room) << ": <code>" << html_escape(spec) << "</code><br>";
     }
   }
-  out << "</p><table><tr><th>metric</th><th>baseline</th><th>extended</th><th>gain &plusmn; s.e.</th><th>paired t</th><th>p</th><th>n</th></tr>\n";
+  out << "</p><p>Two baselines: the baseline model as stated, and the same with every band's absorption refitted per "
+         "room to the measured decay on the fit RIRs (the cheap fix any user would try first). Green: a significant "
+         "gain (p &lt; " << num(kGainAlpha) << "), red: significantly worse.</p>"
+         "<table><tr><th>metric</th><th>baseline</th><th>band-refitted</th><th>extended</th><th>gain over baseline "
+         "&plusmn; s.e.</th><th>paired t</th><th>p</th><th>gain over band-refitted &plusmn; s.e.</th><th>p</th><th>n</th></tr>\n";
+  auto colour = [](const PairedGain& g) { return g.better() ? "#070" : g.worse() ? "#b00" : "#555"; };
   for (const MetricGain& g : d.gains) {
-    const bool better = g.gain > 0.0 && g.p < kGainAlpha;
-    const bool worse = g.gain < 0.0 && g.p < kGainAlpha;
-    out << "<tr><td>" << g.name << "</td><td>" << num(g.baseline) << " " << g.unit << "</td><td>" << num(g.extended) << " "
-        << g.unit << "</td><td style='color:" << (better ? "#070" : worse ? "#b00" : "#555") << "'>" << num(g.gain)
-        << " &plusmn; " << num(g.gain_se, 2) << "</td><td>" << num(g.t, 3) << "</td><td>" << num(g.p, 2) << "</td><td>"
-        << g.n << "</td></tr>\n";
+    const PairedGain vs_base{g.gain, g.gain_se, g.t, g.p, g.n};
+    out << "<tr><td>" << g.name << "</td><td>" << num(g.baseline) << " " << g.unit << "</td><td>" << num(g.refitted) << " "
+        << g.unit << "</td><td>" << num(g.extended) << " " << g.unit << "</td><td style='color:" << colour(vs_base) << "'>"
+        << num(g.gain) << " &plusmn; " << num(g.gain_se, 2) << "</td><td>" << num(g.t, 3) << "</td><td>" << num(g.p, 2)
+        << "</td><td style='color:" << colour(g.vs_refitted) << "'>" << num(g.vs_refitted.gain) << " &plusmn; "
+        << num(g.vs_refitted.gain_se, 2) << "</td><td>" << num(g.vs_refitted.p, 2) << "</td><td>" << g.n << "</td></tr>\n";
   }
   out << "</table>\n";
+  out << "<h3>Metrics the extended model makes worse</h3>\n";
+  if (d.regressions.empty()) out << "<p>None: no metric is significantly worse than with the baseline.</p>\n";
+  for (const Regression& r : d.regressions) {
+    out << "<p class='yes'>" << html_escape(r.metric) << ": " << num(r.baseline) << " &rarr; " << num(r.extended) << " "
+        << html_escape(r.unit) << " (t = " << num(r.vs_baseline.t, 3) << ", p = " << num(r.vs_baseline.p, 2) << "); "
+        << (r.caused_by.empty() ? std::string("no single extension's removal undoes it")
+                                : "caused by the extension of " + html_escape(join_names(r.caused_by)))
+        << ".</p>\n";
+  }
+  out << "<h3>What each effect adds beyond the band refit</h3>\n<p>The band-refitted baseline plus one effect's "
+         "extension, against the band-refitted baseline, on the effect's gain metric (effects whose extension only "
+         "changes decay rates are the refit's own).</p><table><tr><th>effect</th><th>metric</th><th>band-refitted</th>"
+         "<th>+ effect</th><th>gain &plusmn; s.e.</th><th>p</th><th>made worse</th></tr>\n";
+  for (const EffectGain& g : d.effect_gains) {
+    out << "<tr><td>" << g.effect << "</td><td>" << g.metric << "</td><td>" << num(g.refitted) << " " << html_escape(g.unit)
+        << "</td><td>" << num(g.with_effect) << " " << html_escape(g.unit) << "</td><td style='color:" << colour(g.gain)
+        << "'>" << num(g.gain.gain) << " &plusmn; " << num(g.gain.gain_se, 2) << "</td><td>" << num(g.gain.p, 2)
+        << "</td><td>" << html_escape(join_names(g.worse)) << "</td></tr>\n";
+  }
+  out << "</table>\n";
+}
 
-  // Each effect's plots over the set, in catalog order.
-  const auto& effects = (d.registry ? *d.registry : effect_registry()).effects();
-  out << "<h2>Per-band departures (fit RIRs)</h2><div class='plots'>\n";
-  for (size_t k = 0; k < effects.size() && k < d.findings.size(); ++k) effects[k]->report_set(d.findings[k], d, out);
-  out << "</div>\n";
-
+void write_examples_section(const Diagnosis& d, const std::vector<std::unique_ptr<Effect>>& effects, std::ostream& out) {
   for (const ExampleCurves& ex : d.examples) {
     out << "<h2>Held-out example <code>" << html_escape(ex.id) << "</code></h2><div class='plots'>\n";
     double pm, pb, pe;
@@ -132,6 +152,31 @@ void write_report_html(const Diagnosis& d, const std::string& command_line, std:
     for (const auto& effect : effects) effect->report_example(ex, out);
     out << "</div>\n";
   }
+  out << "</body></html>\n";
+}
+
+}  // namespace
+
+void write_report_html(const Diagnosis& d, const std::string& command_line, std::ostream& out) {
+  out << "<!DOCTYPE html><html><head><meta charset='utf-8'><title>rir-diagnose report</title><style>"
+         "body{font-family:sans-serif;margin:24px;max-width:1150px;color:#222}"
+         "table{border-collapse:collapse;margin:8px 0 18px}td,th{border:1px solid #ccc;padding:4px 8px;font-size:13px;"
+         "vertical-align:top}th{background:#f3f3f3}.yes{color:#b00;font-weight:bold}.no{color:#777}"
+         "code{background:#f5f5f5;padding:1px 4px;font-size:12px;word-break:break-all}.plots svg{margin:4px}"
+         "</style></head><body>\n";
+  out << "<h1>rir-diagnose report</h1>\n<p>" << d.num_rirs << " measured RIRs analysed at " << num(d.sample_rate_hz, 6)
+      << " Hz against the baseline model <code>" << html_escape(d.baseline_model) << "</code>; fit on " << d.fit_ids.size()
+      << " RIRs, evaluated on " << d.eval_ids.size() << " held-out RIRs; " << num(d.seconds, 3) << " s.</p>\n";
+  out << "<p>Command: <code>" << html_escape(command_line) << "</code></p>\n";
+
+  write_findings_section(d, out);
+  write_gain_section(d, out);
+  // Each effect's plots over the set, in catalog order.
+  const auto& effects = (d.registry ? *d.registry : effect_registry()).effects();
+  out << "<h2>Per-band departures (fit RIRs)</h2><div class='plots'>\n";
+  for (size_t k = 0; k < effects.size() && k < d.findings.size(); ++k) effects[k]->report_set(d.findings[k], d, out);
+  out << "</div>\n";
+  write_examples_section(d, effects, out);
   out << "</body></html>\n";
 }
 

@@ -136,77 +136,88 @@ std::vector<double> edc_db_curve(const Signal& rir, double onset_s, double step_
 
 double onset_time_s(const Signal& rir) { return onset_position(rir.samples) / rir.sample_rate_hz; }
 
-RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_freqs_hz, double schroeder_hz,
-                             double t60_low_s, const FeatureOptions& options) {
-  const double fs = rir.sample_rate_hz;
-  const std::vector<float>& h = rir.samples;
-  RirFeatures f;
-  const double onset = onset_position(h);
-  f.onset_s = onset / fs;
-  for (float x : h) f.energy += double(x) * x;
+namespace {
 
+// ISO decay parameters (Lundeby noise handling) and the per-band decay rates and levels from them.
+void decay_features(const Signal& rir, RirFeatures* f) {
   MetricsOptions mo;
   mo.definition = MetricsDefinition::kIso;
   mo.lundeby = true;
-  f.metrics = measure_rir(rir, mo);
-  f.decay_rate_per_s.fill(NAN);
-  f.t30_s.fill(NAN);
-  f.early_decay_rate_per_s.fill(NAN);
-  f.level_db.fill(NAN);
+  f->metrics = measure_rir(rir, mo);
+  f->decay_rate_per_s.fill(NAN);
+  f->t30_s.fill(NAN);
+  f->early_decay_rate_per_s.fill(NAN);
+  f->level_db.fill(NAN);
   for (int b = 0; b < kNumOctaveBands; ++b) {
-    const BandMetrics* m = f.metrics.band(kOctaveCentersHz[b]);
+    const BandMetrics* m = f->metrics.band(kOctaveCentersHz[b]);
     if (!m) continue;
-    f.t30_s[b] = m->t30_s;
+    f->t30_s[b] = m->t30_s;
     // T30 where the dynamic range allows it, else T20 (long low-band decays in 1 s files).
     const double t = std::isfinite(m->t30_s) && m->t30_s > 0 ? m->t30_s : m->t20_s;
-    f.decay_rate_per_s[b] = std::isfinite(t) && t > 0 ? kLn60dB / t : NAN;
-    f.early_decay_rate_per_s[b] = std::isfinite(m->edt_s) && m->edt_s > 0 ? kLn60dB / m->edt_s : NAN;
-    f.level_db[b] = m->level_db;
+    f->decay_rate_per_s[b] = std::isfinite(t) && t > 0 ? kLn60dB / t : NAN;
+    f->early_decay_rate_per_s[b] = std::isfinite(m->edt_s) && m->edt_s > 0 ? kLn60dB / m->edt_s : NAN;
+    f->level_db[b] = m->level_db;
   }
+}
 
-  const long on = static_cast<long>(std::floor(onset));
+// Band levels of the direct-sound window and of the reverberant window after the onset.
+void window_features(const std::vector<float>& h, long on, double fs, const FeatureOptions& options, RirFeatures* f) {
   const size_t taper = std::max<size_t>(2, static_cast<size_t>(0.00025 * fs));
   const BandValues direct = window_band_energy(h, on - static_cast<long>(options.direct_pre_ms * 1e-3 * fs),
                                                on + static_cast<long>(options.direct_post_ms * 1e-3 * fs), taper, fs);
   const BandValues tail = window_band_energy(h, on + static_cast<long>(options.tail_begin_ms * 1e-3 * fs),
                                              on + static_cast<long>(options.tail_end_ms * 1e-3 * fs), 4 * taper, fs);
   for (int b = 0; b < kNumOctaveBands; ++b) {
-    f.direct_band_db[b] = direct_band_reliable(b, fs) && std::isfinite(direct[b]) ? db(direct[b]) : NAN;
-    f.tail_band_db[b] = std::isfinite(tail[b]) ? db(tail[b]) : NAN;
+    f->direct_band_db[b] = direct_band_reliable(b, fs) && std::isfinite(direct[b]) ? db(direct[b]) : NAN;
+    f->tail_band_db[b] = std::isfinite(tail[b]) ? db(tail[b]) : NAN;
   }
+}
 
-  // Late power and tail excess per octave band (causal ANSI filters; the filters' ringing is far
-  // below the levels compared here).
-  const size_t n = h.size();
+// Where the response is above digital silence (RirFeatures::active_end_s), and its energy per 10 ms
+// block.
+void span_features(const std::vector<float>& h, double fs, RirFeatures* f) {
+  const size_t block = std::max<size_t>(1, static_cast<size_t>(0.01 * fs));
+  double peak_block = 0.0;
+  for (size_t a = 0; a < h.size(); a += block) {
+    double e = 0.0;
+    for (size_t i = a; i < std::min(h.size(), a + block); ++i) e += double(h[i]) * h[i];
+    f->block_energy.push_back(e / std::max(f->energy, 1e-300));
+    peak_block = std::max(peak_block, f->block_energy.back());
+  }
+  size_t active = f->block_energy.size();
+  while (active > 0 && !(f->block_energy[active - 1] > peak_block * std::pow(10.0, -kSilenceDb / 10.0))) --active;
+  f->active_end_s = std::min(h.size(), active * block) / fs;
+}
+
+// Late power and decay per octave band (causal ANSI filters; the filters' ringing is far below the
+// levels compared here) and the tail level, over the active part's last 10 % and 30 %.
+void late_features(const std::vector<float>& h, double fs, RirFeatures* f) {
+  const size_t n = std::max<size_t>(1, std::min(h.size(), static_cast<size_t>(std::lround(f->active_end_s * fs))));
+  const std::vector<float> active(h.begin(), h.begin() + n);
   const size_t late_begin = n - std::max<size_t>(1, n / 10);
   std::vector<double> late_decay;
-  f.late_power.fill(NAN);
-  f.late_decay_band_db.fill(NAN);
+  f->late_power.fill(NAN);
+  f->late_decay_band_db.fill(NAN);
   for (int b = 0; b < kNumOctaveBands; ++b) {
     if (!band_below_nyquist(b, fs)) continue;
-    const std::vector<double> y = sos_filter(ansi_octave_filter(kOctaveCentersHz[b], fs, 3), h);
+    const std::vector<double> y = sos_filter(ansi_octave_filter(kOctaveCentersHz[b], fs, 3), active);
     double p = 0.0;
     for (size_t i = late_begin; i < n; ++i) p += y[i] * y[i];
-    f.late_power[b] = p / (n - late_begin);
-    f.late_decay_band_db[b] = band_late_decay_db(y);
-    if (kOctaveCentersHz[b] >= 500.0 && kOctaveCentersHz[b] <= 4000.0) {
-      late_decay.push_back(band_late_decay_db(y));
-    }
+    f->late_power[b] = p / (n - late_begin);
+    f->late_decay_band_db[b] = band_late_decay_db(y);
+    if (kOctaveCentersHz[b] >= 500.0 && kOctaveCentersHz[b] <= 4000.0) late_decay.push_back(f->late_decay_band_db[b]);
   }
-  f.late_decay_db = median_of(late_decay);
+  f->late_decay_db = median_of(late_decay);
   double late_e = 0.0;
-  for (size_t i = late_begin; i < n; ++i) late_e += double(h[i]) * h[i];
-  f.tail_level_db = db(late_e / std::max(f.energy, 1e-300));
+  for (size_t i = late_begin; i < n; ++i) late_e += double(active[i]) * active[i];
+  f->tail_level_db = db(late_e / std::max(f->energy, 1e-300));
+}
 
-  // Echo density of the mid/high band (low frequencies would measure the room's modes, not its
-  // reflections).
-  const std::vector<float> bandf = echo_density_band(h, fs, options);
-  const size_t ed_begin = static_cast<size_t>(std::max(0.0, onset + options.echo_density_begin_ms * 1e-3 * fs));
-  const size_t ed_end = static_cast<size_t>(std::max(0.0, onset + options.echo_density_end_ms * 1e-3 * fs));
-  f.echo_density = mean_echo_density(bandf, fs, ed_begin, ed_end);
-
-  // Low-frequency spectrum of the response from the onset on, 0.25 Hz resolution or finer.
-  const std::vector<float> from_onset(h.begin() + std::min<size_t>(n, std::max(0L, on)), h.end());
+// Low-frequency spectrum of the response from the onset on (0.25 Hz resolution or finer, 3 Hz
+// power smoothing on a 1 Hz grid) and the energy share below the Schroeder frequency.
+void low_frequency_features(const std::vector<float>& h, size_t onset, double fs, double schroeder_hz,
+                            const FeatureOptions& options, RirFeatures* f) {
+  const std::vector<float> from_onset(h.begin() + std::min(h.size(), onset), h.end());
   const size_t nfft = next_fast_fft_size(std::max<size_t>(from_onset.size(), static_cast<size_t>(4.0 * fs)));
   const std::vector<double> p = power_spectrum(from_onset, nfft);
   const double df = fs / nfft;
@@ -215,9 +226,9 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
     total += p[k];
     if (k * df < schroeder_hz) low += p[k];
   }
-  f.lf_energy_ratio = total > 0 ? low / total : NAN;
+  f->lf_energy_ratio = total > 0 ? low / total : NAN;
   const size_t lf_bins = static_cast<size_t>(options.lf_max_hz) + 1;
-  f.lf_spectrum_db.assign(lf_bins, NAN);
+  f->lf_spectrum_db.assign(lf_bins, NAN);
   for (size_t k = 0; k < lf_bins; ++k) {
     double s = 0.0;
     int c = 0;
@@ -225,59 +236,106 @@ RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_
       s += p[j];
       ++c;
     }
-    f.lf_spectrum_db[k] = db(c ? s / c : 0.0);
+    f->lf_spectrum_db[k] = db(c ? s / c : 0.0);
   }
-  // Mode prominence: the late spectrum's maximum within the modal half-bandwidth of each predicted
-  // mode, minus the mean of the same window maximum taken on a grid (one half-bandwidth apart)
-  // over the whole range of predicted modes, each taken relative to the local spectral level
-  // (mean dB over +-kTrendHz around it). Both are window maxima of the same spectrum, so for a
-  // response whose peaks do not sit at the predicted modes the difference is zero; the local
-  // reference removes any smooth trend (a loudspeaker's low-frequency roll-off would otherwise
-  // read as modes). The grid reference replaced maxima at the midpoints of wide gaps between
-  // modes: a handful of midpoints per RIR made the reference, and so the statistic, about three
-  // times noisier (per-RIR s.d. 1.1 dB against 0.4 dB; docs/results/diagnose_power.md).
-  constexpr double kTrendHz = 10.0;
-  const double tol_hz = std::max(0.75, 1.1 / std::max(t60_low_s, 0.1));
-  const size_t late_begin_mode =
-      std::min(n, static_cast<size_t>(std::max(0L, on)) + static_cast<size_t>(options.mode_spectrum_begin_ms * 1e-3 * fs));
-  const std::vector<float> late_part(h.begin() + late_begin_mode, h.end());
-  const std::vector<double> pl = late_part.size() >= 16 ? power_spectrum(late_part, nfft) : std::vector<double>();
-  auto window_max = [&](double centre) {
-    double best = -300.0;
-    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - tol_hz) / df)); k * df <= centre + tol_hz && k < pl.size(); ++k) {
-      best = std::max(best, db(pl[k]));
-    }
-    return best;
-  };
-  auto local_level = [&](double centre) {
-    double sum = 0.0;
-    int count = 0;
-    for (size_t k = static_cast<size_t>(std::max(0.0, (centre - kTrendHz) / df)); k * df <= centre + kTrendHz && k < pl.size(); ++k) {
-      sum += db(pl[k]);
-      ++count;
-    }
-    return count ? sum / count : 0.0;
-  };
-  std::vector<double> in_range;
-  for (double fm : mode_freqs_hz) {
-    if (fm >= options.lf_min_hz && fm <= schroeder_hz) in_range.push_back(fm);
+}
+
+// The fine structure of the power spectrum of h[begin, end) (10 % Tukey window) from lo_hz to
+// hi_hz: each bin's power over the mean power within +-trend_hz (a smooth trend, such as a
+// loudspeaker's roll-off or the room's decay per band, divides out).
+std::vector<double> fine_structure(const std::vector<float>& h, size_t begin, size_t end, double fs, double lo_hz,
+                                   double hi_hz, double trend_hz) {
+  std::vector<float> w(h.begin() + begin, h.begin() + end);
+  const size_t taper = w.size() / 10;
+  for (size_t i = 0; i < taper; ++i) {
+    const float g = static_cast<float>(0.5 - 0.5 * std::cos(kPi * (i + 0.5) / taper));
+    w[i] *= g;
+    w[w.size() - 1 - i] *= g;
   }
-  std::sort(in_range.begin(), in_range.end());
-  double peak_sum = 0.0, grid_sum = 0.0;
-  int peak_n = 0, grid_n = 0;
-  if (!pl.empty()) {
-    for (double fm : in_range) {
-      peak_sum += window_max(fm) - local_level(fm);
-      ++peak_n;
-    }
-    if (!in_range.empty()) {
-      for (double c = in_range.front(); c <= in_range.back(); c += tol_hz) {
-        grid_sum += window_max(c) - local_level(c);
-        ++grid_n;
-      }
-    }
+  const size_t nfft = next_fast_fft_size(static_cast<size_t>(2.0 * fs));  // a 0.5 Hz grid
+  const std::vector<double> p = power_spectrum(w, nfft);
+  const double df = fs / nfft;
+  std::vector<double> prefix(p.size() + 1, 0.0);
+  for (size_t k = 0; k < p.size(); ++k) prefix[k + 1] = prefix[k] + p[k];
+  const long half = static_cast<long>(std::lround(trend_hz / df));
+  std::vector<double> out;
+  for (long k = static_cast<long>(std::ceil(lo_hz / df)); k * df <= hi_hz && k < static_cast<long>(p.size()); ++k) {
+    const long a = std::max(0L, k - half), b = std::min<long>(static_cast<long>(p.size()), k + half + 1);
+    const double local = (prefix[b] - prefix[a]) / (b - a);
+    out.push_back(local > 0.0 ? p[k] / local : 0.0);
   }
-  f.mode_prominence_db = (peak_n >= 3 && grid_n >= 3) ? peak_sum / peak_n - grid_sum / grid_n : NAN;
+  return out;
+}
+
+// Late-field spectral persistence per pair of consecutive windows (FeatureOptions::persistence_*).
+void persistence_features(const std::vector<float>& h, size_t onset, double fs, double schroeder_hz,
+                          const FeatureOptions& options, RirFeatures* f) {
+  const size_t begin = onset + static_cast<size_t>(options.persistence_begin_ms * 1e-3 * fs);
+  const size_t len = static_cast<size_t>(options.persistence_window_ms * 1e-3 * fs);
+  const size_t active = static_cast<size_t>(std::lround(f->active_end_s * fs));
+  const double hi_hz = options.persistence_schroeder_factor * schroeder_hz;
+  std::vector<std::vector<double>> windows;
+  for (int w = 0; w < options.persistence_windows; ++w) {
+    const size_t a = begin + w * len;
+    windows.push_back(a + len <= std::min(active, h.size()) && hi_hz > options.lf_min_hz + 2.0 * options.persistence_trend_hz
+                          ? fine_structure(h, a, a + len, fs, options.lf_min_hz, hi_hz, options.persistence_trend_hz)
+                          : std::vector<double>());
+  }
+  for (size_t w = 0; w + 1 < windows.size(); ++w) {
+    const bool ok = windows[w].size() >= 8 && windows[w].size() == windows[w + 1].size();
+    f->persistence_pairs.push_back(ok ? correlation(windows[w], windows[w + 1]) : NAN);
+  }
+}
+
+}  // namespace
+
+double tail_level_in_window_db(const RirFeatures& f, const RirFeatures& reference) {
+  const size_t end = std::min(f.block_energy.size(), static_cast<size_t>(std::lround(reference.active_end_s / 0.01)));
+  const size_t begin = end - std::min(end, std::max<size_t>(1, end / 10));
+  double e = 0.0;
+  for (size_t k = begin; k < end; ++k) e += f.block_energy[k];
+  return end > begin ? db(e) : NAN;
+}
+
+size_t persistence_pairs_in_span(const RirFeatures& reference, const FeatureOptions& options) {
+  size_t pairs = 0;
+  for (size_t p = 0; p < reference.persistence_pairs.size(); ++p) {
+    const double end_s = reference.onset_s + 1e-3 * (options.persistence_begin_ms + (p + 2) * options.persistence_window_ms);
+    if (end_s > reference.active_end_s || !std::isfinite(reference.persistence_pairs[p])) break;
+    ++pairs;
+  }
+  return pairs;
+}
+
+double mean_persistence(const RirFeatures& f, size_t pairs) {
+  double s = 0.0;
+  size_t c = 0;
+  for (size_t p = 0; p < pairs && p < f.persistence_pairs.size(); ++p) {
+    if (std::isfinite(f.persistence_pairs[p])) { s += f.persistence_pairs[p]; ++c; }
+  }
+  return c == pairs && c > 0 ? s / c : NAN;
+}
+
+RirFeatures compute_features(const Signal& rir, double schroeder_hz, const FeatureOptions& options) {
+  const double fs = rir.sample_rate_hz;
+  const std::vector<float>& h = rir.samples;
+  RirFeatures f;
+  const double onset = onset_position(h);
+  f.onset_s = onset / fs;
+  for (float x : h) f.energy += double(x) * x;
+  const size_t on = static_cast<size_t>(std::max(0.0, std::floor(onset)));
+  decay_features(rir, &f);
+  window_features(h, static_cast<long>(on), fs, options, &f);
+  span_features(h, fs, &f);
+  late_features(h, fs, &f);
+  // Echo density of the mid/high band (low frequencies would measure the room's modes, not its
+  // reflections).
+  const std::vector<float> bandf = echo_density_band(h, fs, options);
+  const size_t ed_begin = static_cast<size_t>(std::max(0.0, onset + options.echo_density_begin_ms * 1e-3 * fs));
+  const size_t ed_end = static_cast<size_t>(std::max(0.0, onset + options.echo_density_end_ms * 1e-3 * fs));
+  f.echo_density = mean_echo_density(bandf, fs, ed_begin, ed_end);
+  low_frequency_features(h, on, fs, schroeder_hz, options, &f);
+  persistence_features(h, on, fs, schroeder_hz, options, &f);
   return f;
 }
 

@@ -30,11 +30,19 @@ struct FeatureOptions {
   double echo_density_end_ms = 20.0;
   double echo_density_low_hz = 1000.0;   // below: the room's modes, not its reflections
   double echo_density_high_hz = 7000.0;  // capped at 0.45 x the sample rate
-  // The mode-prominence spectrum starts this long after the onset: modes that are less damped
-  // than the simulation's stand out more the later the window starts (the early part is shared
-  // by every modal and diffuse component alike); 150 ms more than doubled the statistic's
-  // t-value on the tests' independent generator (docs/results/diagnose_power.md).
-  double mode_spectrum_begin_ms = 150.0;
+  // Late-field spectral persistence (room_modes): the power spectrum's fine structure in
+  // consecutive windows of persistence_window_ms from persistence_begin_ms after the onset (after
+  // the baseline's image sources end: ~100 ms in a 90 m3 room, ~120 ms in R3VIVAL's 144 m3), from
+  // lf_min_hz to persistence_schroeder_factor x the stated room's Schroeder frequency. A modal
+  // field's spectrum keeps its peaks from one window to the next (every mode rings at its own
+  // frequency); a diffuse field's (the simulation's noise tail, measurement noise) is a new draw
+  // in every window. Four windows of 150 ms: the larger t-value on the tests' generator than two of
+  // 250 ms or five of 120 ms (docs/results/diagnose_power.md).
+  double persistence_begin_ms = 150.0;
+  double persistence_window_ms = 150.0;
+  int persistence_windows = 4;
+  double persistence_schroeder_factor = 2.0;
+  double persistence_trend_hz = 10.0;  // the local mean the fine structure is taken against
 };
 
 struct RirFeatures {
@@ -51,17 +59,38 @@ struct RirFeatures {
   BandValues late_power;         // per-sample power of the last 10 % per band (noise estimate)
   BandValues late_decay_band_db;  // the same per band (NaN above Nyquist)
   double late_decay_db = 0.0;    // decay between 70-80 % and 90-100 % of the file (median, 500..4k)
-  double tail_level_db = 0.0;    // energy of the last 10 % re the total energy, dB
+  double tail_level_db = 0.0;    // energy of the last 10 % of the active part re the total energy, dB
   double echo_density = 0.0;     // mean normalised echo density (FeatureOptions' band) in the early window
-  double mode_prominence_db = 0.0;  // late spectrum at predicted modes minus its typical level (window maxima re local level)
   std::vector<double> lf_spectrum_db;  // 1 Hz grid from 0 to lf_max_hz, 3 Hz power smoothing
   double lf_energy_ratio = 0.0;  // energy below the Schroeder frequency / total energy
+  // The end of the part above digital silence (trailing 10 ms blocks more than kSilenceDb below
+  // the strongest block: zero padding, a file cut and padded). The tail metrics stop there.
+  double active_end_s = 0.0;
+  std::vector<double> block_energy;  // energy per 10 ms block from the file's start, re the total energy
+  // Late-field spectral persistence per pair of consecutive windows (FeatureOptions::persistence_*):
+  // the correlation of the two windows' fine structure (power re its local mean); NaN for a window
+  // past the active part.
+  std::vector<double> persistence_pairs;
 };
 
-// `mode_freqs_hz`: the predicted mode frequencies of the stated room in the prominence range;
-// `schroeder_hz` bounds it.
-RirFeatures compute_features(const Signal& rir, const std::vector<double>& mode_freqs_hz, double schroeder_hz,
-                             double t60_low_s, const FeatureOptions& options = {});
+// Digital silence: a 10 ms block this far below the RIR's strongest block (float zero padding,
+// the end of a file cut and padded) is not part of the response.
+inline constexpr double kSilenceDb = 150.0;
+
+// The tail level of `f` in the window of `reference`'s last 10 % of its active part (energy re the
+// total, dB): measured and simulated compared over the same span, which never reaches into the
+// measurement's digital silence.
+double tail_level_in_window_db(const RirFeatures& f, const RirFeatures& reference);
+
+// The number of persistence pairs whose windows end within `reference`'s active part (never in
+// the measurement's digital silence; measurement noise only lowers the persistence it dilutes),
+// and the mean persistence of `f` over those first `pairs` pairs (NaN for none).
+size_t persistence_pairs_in_span(const RirFeatures& reference, const FeatureOptions& options = {});
+double mean_persistence(const RirFeatures& f, size_t pairs);
+
+// `schroeder_hz`: the stated room's Schroeder frequency (the low-frequency energy share and the
+// persistence range).
+RirFeatures compute_features(const Signal& rir, double schroeder_hz, const FeatureOptions& options = {});
 
 // The first arrival in seconds, as compute_features(...).onset_s (interpolated peak of the first
 // sample within 12 dB of the RIR's peak) without the rest of the feature pass.

@@ -136,7 +136,7 @@ TEST(RirFeatures, OnsetTimeIsTheFeaturePassOnset) {
     rir.samples[i] += float(0.03 * (double(state >> 8) / double(1 << 24) - 0.5) * std::exp(-(i - 140) / 1500.0));
   }
   const double onset = diagnose::onset_time_s(rir);
-  EXPECT_EQ(onset, diagnose::compute_features(rir, {}, 200.0, 0.5).onset_s);
+  EXPECT_EQ(onset, diagnose::compute_features(rir, 200.0).onset_s);
   EXPECT_NEAR(onset * rir.sample_rate_hz, 100.3, 0.5);
 }
 

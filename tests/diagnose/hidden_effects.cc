@@ -101,6 +101,25 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
                          : directivity_db * std::clamp(std::log2(kOctaveCentersHz[b] / 125.0) / 4.0, 0.0, 1.0);
   }
   const double size_factor = 1.0 + options.size_error;
+  // The dense modal field (drawn after everything above: the other draws stay as they were). Its
+  // level re the modal Green's function and the divisor of every mode's Morse damping (1: the
+  // walls' damping, which already leaves axial modes decaying ~1.6x slower than the tail), and a
+  // true room within +-5 % of the stated one per dimension.
+  const double modal_gain_db = drawn(rng, options, "modal_gain_db", -3.0, 3.0);
+  const double modal_decay = drawn(rng, options, "modal_decay_factor", 1.0, 2.0);
+  sim::Vec3 modal_room_scale;
+  const double modal_size_error = options.fixed.count("modal_size_error") ? options.fixed.at("modal_size_error") : 0.05;
+  for (double& s : modal_room_scale) s = 1.0 + modal_size_error * rng.uniform(-1.0, 1.0);
+  const bool dense = options.dense_modes && effects.count("room_modes");
+  // Outside the catalog (drawn last: nothing above changes).
+  const double coupled_level_db = drawn(rng, options, "coupled_level_db", -14.0, -8.0);
+  const double coupled_decay = drawn(rng, options, "coupled_decay_factor", 2.5, 4.0);
+  const double flutter_level_db = drawn(rng, options, "flutter_level_db", -12.0, -6.0);
+  const double flutter_loss_db = drawn(rng, options, "flutter_trip_loss_db", 0.5, 1.5);
+  const double splay_m = drawn(rng, options, "splay_m", 0.6, 1.2);
+  if (options.coupled_room) { set.truth["coupled_level_db"] = coupled_level_db; set.truth["coupled_decay_factor"] = coupled_decay; }
+  if (options.flutter) { set.truth["flutter_level_db"] = flutter_level_db; set.truth["flutter_trip_loss_db"] = flutter_loss_db; }
+  if (options.non_shoebox) set.truth["splay_m"] = splay_m;
 
   if (effects.count("band_absorption")) {
     for (int b = 0; b < kNumOctaveBands; ++b) set.truth["absorption_factor_" + std::to_string(b)] = absorption_factor[b];
@@ -115,7 +134,12 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
   if (effects.count("source_directivity")) {
     for (int b = 0; b < kNumOctaveBands; ++b) set.truth["directivity_db_" + std::to_string(b)] = directivity[b];
   }
-  if (effects.count("room_modes")) { set.truth["mode_gain_db"] = mode_gain_db; set.truth["mode_decay_factor"] = mode_decay; }
+  if (effects.count("room_modes") && !dense) { set.truth["mode_gain_db"] = mode_gain_db; set.truth["mode_decay_factor"] = mode_decay; }
+  if (dense) {
+    set.truth["modal_gain_db"] = modal_gain_db;
+    set.truth["modal_decay_factor"] = modal_decay;
+    for (int a = 0; a < 3; ++a) set.truth["modal_room_scale_" + std::to_string(a)] = modal_room_scale[a];
+  }
   if (effects.count("transducer_response") || options.highpass_hz > 0.0) {
     std::vector<TestBiquad> full = effects.count("transducer_response") ? chain : std::vector<TestBiquad>{};
     if (options.highpass_hz > 0.0) full.push_back(test_high_pass(options.highpass_hz, std::sqrt(0.5), fs));
@@ -159,8 +183,30 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
       if (options.fixed.count("air_scale")) real.air_scale = options.fixed.at("air_scale");
     }
     if (effects.count("time_offset")) real.latency_s = latency_ms * 1e-3;
+    if (options.coupled_room) {
+      real.coupled_level_db = coupled_level_db;
+      real.coupled_decay_factor = coupled_decay;
+    }
+    if (options.flutter) {
+      real.flutter_level_db = flutter_level_db;
+      real.flutter_trip_loss_db = flutter_loss_db;
+    }
+    if (options.non_shoebox) {
+      const double lx = real.size_m[0], ly = real.size_m[1];
+      real.floor_polygon = {{0.0, 0.0}, {lx, 0.0}, {lx + splay_m, ly}, {-splay_m, ly}};
+    }
     if (effects.count("source_directivity")) real.directivity_db = directivity;
-    if (effects.count("room_modes")) {
+    if (dense) {
+      // Positions stay where they were measured (from the room's origin corner), inside the room.
+      for (int a = 0; a < 3; ++a) {
+        real.size_m[a] *= modal_room_scale[a];
+        real.source_m[a] = std::clamp(real.source_m[a], 0.1, real.size_m[a] - 0.1);
+        real.mic_m[a] = std::clamp(real.mic_m[a], 0.1, real.size_m[a] - 0.1);
+      }
+      real.modal_gain_db = modal_gain_db;
+      real.modal_decay_factor = modal_decay;
+      if (options.fixed.count("modal_max_factor")) real.modal_max_factor = options.fixed.at("modal_max_factor");
+    } else if (effects.count("room_modes")) {
       for (int a = 0; a < 3; ++a) real.size_m[a] *= mode_room_scale[a];
       real.mode_gain_db = mode_gain_db;
       real.mode_decay_factor = mode_decay;
@@ -260,6 +306,10 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
         density_at_1k = 1.0 / mean_gain;
       }
       noise_level_db.push_back(10.0 * std::log10(target * target * density_at_1k / energy));
+    }
+    if (options.silent_tail_s > 0.0) {
+      const size_t cut = n - std::min(n, static_cast<size_t>(std::lround(options.silent_tail_s * fs)));
+      std::fill(s.samples.begin() + cut, s.samples.end(), 0.0f);
     }
     s.id = stated.rir_id;
     set.measured.push_back(std::move(s));
