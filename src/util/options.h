@@ -30,6 +30,10 @@ struct OptionSpec {
   std::function<void(const std::string&)> set;
   // Repeated options only: forgets the values stored so far.
   std::function<void()> clear;
+  // The current value as text that `set` reads back (a settings file, util/settings_file.h writes
+  // it); floating-point values with `digits` significant digits. Repeated options: one text per
+  // value. Empty for a spec made by hand without it: such an option cannot be a setting.
+  std::function<std::vector<std::string>(int digits)> get;
 };
 
 class OptionsItf {
@@ -67,6 +71,12 @@ class OptionsItf {
     spec.name = name;
     spec.help = help + " (" + join_choices(names, " | ") + ")";
     spec.default_text = default_text;
+    spec.get = [table, value](int) {
+      for (const auto& c : table) {
+        if (c.second == *value) return std::vector<std::string>{c.first};
+      }
+      return std::vector<std::string>{};
+    };
     spec.set = [table, names, name, value](const std::string& text) {
       for (const auto& c : table) {
         if (c.first == text) {
