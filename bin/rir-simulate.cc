@@ -28,8 +28,10 @@ int main(int argc, char** argv) {
     CommandLine cli("rir-simulate", usage);
     sim::SimulateOptions options;
     options.Register(&cli);
-    register_output_options(&cli);
+    OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 2, 2);
+    install_output_policy(policy);
     note_input(args[0]);
     const std::vector<sim::RoomSpec> rooms = sim::read_room_list(args[0]);
     log_info("simulating " + std::to_string(rooms.size()) + " RIRs with model '" + options.model + "'");

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "asr/asr.h"
+#include "io/common_options.h"
 #include "util/error.h"
 
 namespace tsrir {
@@ -45,9 +46,9 @@ void AsrModelConfig::validate() const {
 void AsrTrainOptions::Register(OptionsItf* opts) {
   opts->Register("epochs", &epochs, "Total training epochs (a resumed run continues to this count)");
   opts->Register("max-minutes", &max_minutes, "Stop after this many minutes of training with a checkpoint (0 = no limit)");
-  opts->Register("seed", &seed, "Random seed (initialisation, batch order, masks, dropout)");
-  opts->RegisterAlias("random-seed", "seed");
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  CommonOptions(opts)
+      .seed(&seed, "the initialisation, batch order, masks and dropout")
+      .threads(&num_threads, "LibTorch's CPU threads and feature extraction");
   opts->Register("batch-size", &batch_size, "Utterances per step (batches group similar lengths)");
   opts->Register("learning-rate", &learning_rate, "Adam learning rate");
   opts->Register("grad-clip", &grad_clip, "Gradient norm clip");
@@ -75,7 +76,7 @@ void AsrTrainOptions::validate() const {
 }
 
 void AsrDecodeOptions::Register(OptionsItf* opts) {
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  CommonOptions(opts).threads(&num_threads, "LibTorch's CPU threads and feature extraction");
   opts->Register("batch-size", &batch_size, "Utterances per forward pass");
 }
 

@@ -20,6 +20,7 @@
 #include "augment/wav_reverberate.h"
 #include "io/atomic_output.h"
 #include "io/audio_io.h"
+#include "io/common_options.h"
 #include "io/data_dir.h"
 #include "io/kaldi_table.h"
 #include "io/owned_output.h"
@@ -193,8 +194,7 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
                  "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
   reverb.Register(opts);
   opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
-  opts->Register("random-seed", &random_seed, "random seed (any integer; all draws derive from it)");
-  opts->RegisterAlias("seed", "random-seed");
+  CommonOptions(opts).seed(&random_seed, "every draw");
   opts->Register("source-sampling-rate", &source_sampling_rate_hz,
                  "if > 0, the speech's rate in Hz (checked with --write-wavs; RIRs and noises are always resampled "
                  "to the speech's rate)");
@@ -203,7 +203,7 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
   opts->Register("write-wavs", &write_wavs, "write 16-bit wavs into this directory instead of pipes");
   opts->Register("pipe-program", &pipe_program,
                  "program called by the pipes (default: wav-reverberate next to this program)");
-  opts->Register("num-threads", &num_threads, "threads for --write-wavs");
+  CommonOptions(opts).threads(&num_threads, "--write-wavs writes recordings in parallel");
   opts->Register("max-in-memory-duration", &max_in_memory_s,
                  "with --write-wavs: recordings longer than this many seconds are reverberated in passes over the "
                  "file, with memory independent of their length and the same wav (temporaries in the wav dir); "

@@ -1,5 +1,6 @@
 #include "eq/eq_options.h"
 
+#include "io/common_options.h"
 #include "util/error.h"
 
 namespace tsrir {
@@ -38,8 +39,7 @@ void register_apply(RirEqOptions* o, OptionsItf* opts) {
   opts->Register("max-cut-db", &o->eq.max_cut_db, "Largest cut of any EQ node (dB)");
   opts->RegisterEnum("level", &o->eq.level, {{"peak", EqLevel::kPeak}, {"energy", EqLevel::kEnergy}, {"none", EqLevel::kNone}},
                      "Output level: peak (keep max |x|), energy (keep sum x^2) or none");
-  opts->RegisterEnum("format", &o->format, {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}},
-                     "Output wav samples");
+  CommonOptions(opts).audio_format(&o->format);
   opts->Register("resample", &o->resample, "Resample inputs whose rate differs from the model's (else an error)");
   opts->Register("report", &o->report, "Write per-RIR gains (before, target, achieved) to this file");
 }
@@ -51,11 +51,11 @@ void RirEqOptions::Register(OptionsItf* opts, EqProgramMode mode) {
     case EqProgramMode::kFit:
       register_measure(this, opts, true);
       register_fit(this, opts);
-      opts->Register("seed", &seed, "Seed of the EM initialisation (--model=gmm)");
+      CommonOptions(opts).seed(&seed, "the EM initialisation (--model=gmm)");
       break;
     case EqProgramMode::kApply:
       register_apply(this, opts);
-      opts->Register("seed", &seed, "Seed of the target-gain draws (one stream per RIR id)");
+      CommonOptions(opts).seed(&seed, "the target-gain draws (one stream per RIR id)");
       break;
     case EqProgramMode::kGains:
       register_measure(this, opts, false);
@@ -66,11 +66,10 @@ void RirEqOptions::Register(OptionsItf* opts, EqProgramMode mode) {
       register_measure(this, opts, true);
       register_fit(this, opts);
       register_apply(this, opts);
-      opts->Register("seed", &seed, "Seed of the EM initialisation and of the target-gain draws");
+      CommonOptions(opts).seed(&seed, "the EM initialisation and of the target-gain draws");
       break;
   }
-  if (mode != EqProgramMode::kGains) opts->RegisterAlias("random-seed", "seed");
-  opts->Register("num-threads", &num_threads, "Threads");
+  CommonOptions(opts).threads(&num_threads, "RIRs are processed in parallel");
 }
 
 MeasureSetOptions RirEqOptions::measure_options() const {

@@ -18,8 +18,9 @@
 #include <sstream>
 
 #include "io/atomic_output.h"
-#include "util/cli.h"
+#include "io/common_options.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/strings.h"
 
 namespace fs = std::filesystem;
@@ -312,19 +313,20 @@ class BlockSignals {
 
 }  // namespace
 
-OutputPolicy& output_policy() {
+namespace {
+OutputPolicy& installed_policy() {
   static OutputPolicy policy;
   return policy;
 }
+}  // namespace
 
-void register_output_options(CommandLine* cli) {
-  // The program, not its sub-command: "rir-eq apply" and "rir-eq" write the same outputs.
-  const std::string& name = cli->program();
-  output_policy().program = name.substr(0, name.find(' '));
-  cli->flag("overwrite", &output_policy().overwrite,
-            "write into an output directory that tsrir did not write (or replace files another run "
-            "wrote there); only files of the names this program writes are replaced, nothing is deleted");
-}
+OutputPolicy::OutputPolicy(const std::string& program_name) : program(program_name.substr(0, program_name.find(' '))) {}
+
+void OutputPolicy::Register(OptionsItf* opts) { CommonOptions(opts).overwrite(&overwrite); }
+
+const OutputPolicy& output_policy() { return installed_policy(); }
+
+void install_output_policy(const OutputPolicy& policy) { installed_policy() = policy; }
 
 void note_input(const std::string& rx) {
   InputRegistry& r = inputs();

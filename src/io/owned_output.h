@@ -20,16 +20,24 @@
 
 namespace tsrir {
 
-class CommandLine;
+class OptionsItf;
 
-// Process-wide output policy, set from the command line of each program.
+// Who writes and whether --overwrite was given: the policy every owned output of the process
+// follows. A program's main makes one from its command line and installs it after parsing:
+//   OutputPolicy policy(cli.program());  policy.Register(&cli);  cli.parse(...);
+//   install_output_policy(policy);
 struct OutputPolicy {
-  bool overwrite = false;      // --overwrite: may write into a directory it does not own
-  std::string program = "tsrir";
+  std::string program = "tsrir";  // recorded in the marker as each file's writer
+  bool overwrite = false;         // --overwrite: may write into a directory it does not own
+
+  OutputPolicy() = default;
+  // The program, not its sub-command: "rir-eq apply" and "rir-eq" write the same outputs.
+  explicit OutputPolicy(const std::string& program_name);
+  void Register(OptionsItf* opts);  // --overwrite (io/common_options.h)
 };
-OutputPolicy& output_policy();
-// Registers --overwrite and records the program's name (call once in each program's main).
-void register_output_options(CommandLine* cli);
+// The installed policy (before any: program "tsrir", no --overwrite, as for the Python module).
+const OutputPolicy& output_policy();
+void install_output_policy(const OutputPolicy& policy);
 
 // Records an input: a path, a directory, or an rxfilename (a pipe's existing file arguments count).
 // Readers in src/io call it for the files they read and the files a list points at; every owned

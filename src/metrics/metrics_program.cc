@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "io/atomic_output.h"
+#include "io/common_options.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/parallel.h"
@@ -13,7 +14,7 @@ namespace tsrir {
 void MetricsRunOptions::Register(OptionsItf* opts) {
   metrics.Register(opts);
   opts->Register("channel", &channel, "channel to measure (0-based; -1 = mean of all channels)");
-  opts->Register("num-threads", &num_threads, "threads (RIRs are measured in parallel)");
+  CommonOptions(opts).threads(&num_threads, "RIRs are measured in parallel");
   opts->Register("skip-errors", &skip_errors, "report unreadable or unmeasurable RIRs and go on");
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "io/atomic_output.h"
+#include "io/common_options.h"
 #include "sim/room_list.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -49,8 +50,7 @@ void RoomListCommand::Register(OptionsItf* opts) {
                      "what gets its own draw: rir (one value for the room), surface (one per surface, flat over "
                      "bands), surface-band (one per surface and octave band)");
   opts->Register("scattering", &draw.scattering, "scattering coefficient written for every RIR");
-  opts->Register("seed", &draw.seed, "random seed of the absorption draws");
-  opts->RegisterAlias("random-seed", "seed");
+  CommonOptions(opts).seed(&draw.seed, "the absorption draws");
   opts->Register("room", &room, "r3vival: room size Lx,Ly,Lz in metres");
   opts->Register("source-height", &source_height_m, "r3vival: source height in metres (not published)");
   opts->Register("mic-height", &mic_height_m, "r3vival: microphone height in metres (not published)");
