@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
     policy.Register(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 2, 2);
     install_output_policy(policy);
-    note_input(args[0]);
+    run_inputs()->add(args[0]);
     const std::vector<sim::RoomSpec> rooms = sim::read_room_list(args[0]);
     log_info("simulating " + std::to_string(rooms.size()) + " RIRs with model '" + options.model + "'");
     sim::simulate_room_list(rooms, args[1], options);

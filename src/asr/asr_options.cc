@@ -9,7 +9,17 @@
 
 namespace tsrir {
 
-const char* rnn_type_name(RnnType type) { return type == RnnType::kLstm ? "lstm" : "gru"; }
+const Choices<RnnType>& rnn_type_choices() {
+  static const Choices<RnnType> choices = {{"gru", RnnType::kGru}, {"lstm", RnnType::kLstm}};
+  return choices;
+}
+
+const char* rnn_type_name(RnnType type) {
+  for (const auto& [name, value] : rnn_type_choices()) {
+    if (value == type) return name.c_str();  // the table's own storage: static
+  }
+  return "gru";
+}
 
 void LogMelOptions::Register(OptionsItf* opts) {
   opts->Register("sample-rate", &sample_rate_hz, "Audio is resampled to this rate (Hz)");
@@ -27,8 +37,7 @@ void AsrModelConfig::Register(OptionsItf* opts) {
   opts->Register("conv-channels", &conv_channels, "Channels of the convolutions");
   opts->Register("conv-kernel", &conv_kernel, "Kernel width of the convolutions (odd)");
   opts->Register("subsampling", &subsampling, "Time stride of the first convolution (1..4)");
-  opts->RegisterEnum("rnn-type", &rnn_type, {{"gru", RnnType::kGru}, {"lstm", RnnType::kLstm}},
-                     "Recurrent layer type");
+  opts->RegisterEnum("rnn-type", &rnn_type, rnn_type_choices(), "Recurrent layer type");
   opts->Register("rnn-layers", &rnn_layers, "Bidirectional recurrent layers");
   opts->Register("rnn-hidden", &rnn_hidden, "Hidden units per direction");
   opts->Register("dropout", &dropout, "Dropout after the convolutions, between and after the recurrent layers");

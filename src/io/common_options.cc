@@ -41,8 +41,7 @@ CommonOptions& CommonOptions::seed(Seed* seed, const std::string& what) {
 }
 
 CommonOptions& CommonOptions::audio_format(SampleFormat* format) {
-  opts_->RegisterEnum("format", format, {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}},
-                      "sample format of the audio written");
+  opts_->RegisterEnum("format", format, sample_format_choices(), "sample format of the audio written");
   return *this;
 }
 

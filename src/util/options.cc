@@ -144,14 +144,10 @@ void OptionsItf::Register(const std::string& name, std::vector<std::string>* val
   RegisterSpec(std::move(spec));
 }
 
-std::string OptionsItf::join_choices(const std::vector<std::string>& names, const std::string& sep) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) out += (i ? sep : "") + names[i];
-  return out;
-}
+void throw_unknown_choice(const std::string& expected) { throw Error("expected one of: " + expected); }
 
-void OptionsItf::throw_bad_choice(const std::string&, const std::string&, const std::vector<std::string>& names) {
-  throw Error("expected one of: " + join_choices(names, ", "));
+void throw_unknown_name(const std::string& what, const std::string& text, const std::string& expected) {
+  throw Error("unknown " + what + " '" + text + "' (expected " + expected + ")");
 }
 
 }  // namespace tsrir
