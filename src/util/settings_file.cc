@@ -71,6 +71,19 @@ void SettingsFile::Rename(const std::string& name, const std::string& key) {
   throw Error("settings: no option '" + name + "' to rename (a program bug)");
 }
 
+void SettingsFile::OmitWhenDefault(const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    auto it = std::find_if(settings_.begin(), settings_.end(), [&](const Setting& s) { return s.spec.name == name; });
+    if (it == settings_.end() || it->spec.repeated || !it->spec.get) {
+      throw Error("settings: no single-valued option '" + name + "' to omit when default (a program bug)");
+    }
+    const std::vector<std::string> now = it->spec.get(style_.double_digits);
+    if (now.size() != 1) throw Error("settings: option '" + name + "' has no default to omit (a program bug)");
+    it->omit_when_default = true;
+    it->default_value = now[0];
+  }
+}
+
 void SettingsFile::Order(const std::vector<std::string>& keys) { order_ = keys; }
 
 const SettingsFile::Setting* SettingsFile::find(const std::string& key) const {
@@ -107,6 +120,7 @@ SettingsValues SettingsFile::values() const {
       check_storable(s.key, texts[i]);
       joined += (i ? "\n" : "") + texts[i];
     }
+    if (s.omit_when_default && joined == s.default_value) continue;
     out[s.key] = joined;
   }
   return out;
@@ -116,6 +130,7 @@ std::string SettingsFile::text() const {
   const SettingsValues v = values();
   std::ostringstream os;
   for (const Setting* s : in_file_order()) {
+    if (!v.count(s->key)) continue;  // omitted when default
     const std::string& joined = v.at(s->key);
     if (s->spec.repeated && joined.empty()) continue;
     for (const std::string& value : split(joined, '\n')) os << s->key << ' ' << value << '\n';
@@ -175,6 +190,10 @@ void SettingsFile::set_value(const Setting& s, const std::string& value, const s
 void SettingsFile::check_complete(const std::set<std::string>& present, const std::string& where) const {
   for (const Setting& s : settings_) {
     if (present.count(s.key)) continue;
+    if (s.omit_when_default) {
+      set_value(s, s.default_value, where);
+      continue;
+    }
     if (s.spec.repeated && s.spec.clear && style_.require_all) s.spec.clear();  // none stored: none
     if (!s.spec.repeated && style_.require_all) throw Error(where + ": settings lack '" + s.key + "'");
   }

@@ -52,6 +52,11 @@ class SettingsFile : public OptionsItf {
   void Exclude(const std::vector<std::string>& names);
   // Option `name` is stored under `key` (keys of files written before settings followed options).
   void Rename(const std::string& name, const std::string& key);
+  // These options are written only when their value differs from the one they have now (call it
+  // on default-constructed options), and a file without them gives them that value, even with
+  // require_all: an option added to a settings struct then leaves the bytes of files written
+  // before it, and those files still read.
+  void OmitWhenDefault(const std::vector<std::string>& names);
   // Unsorted style: these keys first, in this order (the rest follow in registration order).
   void Order(const std::vector<std::string>& keys);
 
@@ -69,6 +74,8 @@ class SettingsFile : public OptionsItf {
   struct Setting {
     OptionSpec spec;
     std::string key;
+    bool omit_when_default = false;
+    std::string default_value;  // with omit_when_default: the value that is not written
   };
   struct Line {
     std::string key, value;

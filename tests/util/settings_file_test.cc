@@ -131,6 +131,45 @@ TEST(SettingsFile, MissingKeysKeepTheFieldOrAreErrors) {
             "old.txt: settings lack 'width'");
 }
 
+// An option added to a settings struct after files were written (here "residual", default false):
+// with OmitWhenDefault it is written only when on, so the older files' bytes stay what the struct
+// writes with it off, and those files read even with require_all, giving it its default.
+TEST(SettingsFile, OmittedWhenDefaultKeepsOlderFilesBytesAndReadable) {
+  SettingsStyle strict = sorted_style();
+  strict.require_all = true;
+  auto omitting = [&](ModelSettings* m) {
+    SettingsFile file = file_for(m, strict);
+    file.OmitWhenDefault({"residual"});
+    return file;
+  };
+  ModelSettings defaults;
+  const std::string without = omitting(&defaults).text();
+  EXPECT_EQ(without.find("residual"), std::string::npos);
+  EXPECT_EQ(omitting(&defaults).values().count("residual"), 0u);
+  // Identical to the file of a struct that lacks the option, line for line.
+  std::string all_lines = file_for(&defaults, strict).text();
+  const std::string residual_line = "residual false\n";
+  all_lines.erase(all_lines.find(residual_line), residual_line.size());
+  EXPECT_EQ(without, all_lines);
+
+  ModelSettings on;
+  SettingsFile on_file = omitting(&on);  // made on default options, as the doc asks; then set
+  on.residual = true;
+  const std::string with = on_file.text();
+  EXPECT_NE(with.find("\nresidual true\n"), std::string::npos);
+
+  ModelSettings read;
+  SettingsFile read_file = omitting(&read);
+  read_file.parse(with, "new.txt");
+  EXPECT_TRUE(read.residual);
+  read_file.parse(without, "old.txt");  // require_all, yet no error: the default, not the field's value
+  EXPECT_FALSE(read.residual);
+  EXPECT_EQ(error_of([&] { file_for(&read, strict).parse(without, "old.txt"); }),
+            "old.txt: settings lack 'residual'");  // without OmitWhenDefault: an error
+  EXPECT_EQ(error_of([&] { file_for(&read).OmitWhenDefault({"list"}); }),
+            "settings: no single-valued option 'list' to omit when default (a program bug)");
+}
+
 TEST(SettingsFile, BadFilesNameFileAndLine) {
   ModelSettings m;
   SettingsFile file = file_for(&m);
