@@ -24,8 +24,10 @@ int main(int argc, char** argv) {
         "Example:\n"
         "  asr-decode --num-threads=2 exp/asr/real data/test_farfield exp/asr/real/decode_test_farfield\n");
     o.Register(&cli);
-    tsrir::register_output_options(&cli);
+    tsrir::OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const auto args = cli.parse(argc, argv, 3, 3);
+    tsrir::install_output_policy(policy);
     o.model_dir = args[0];
     o.data_dir = args[1];
     o.out_dir = args[2];

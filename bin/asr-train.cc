@@ -28,8 +28,10 @@ int main(int argc, char** argv) {
         "  asr-train --epochs=20 --num-threads=2 --seed=1 data/train_rvb_real exp/asr/real\n"
         "  asr-train --config=conf/asr-train-proxy.conf --seed=1 data/train_rvb_real exp/asr/real\n");
     o.Register(&cli);
-    tsrir::register_output_options(&cli);
+    tsrir::OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);
+    tsrir::install_output_policy(policy);
     o.data_dir = args[0];
     o.model_dir = args[1];
     const tsrir::AsrTrainResult r = tsrir::train_asr(o);

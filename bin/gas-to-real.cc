@@ -28,8 +28,10 @@ int main(int argc, char** argv) {
         "Example:\n"
         "  gas-to-real --model=exp/tsrirgan --batch-size=32 --num-threads=4 data/gas/rir.scp data/gsr_gas\n");
     o.Register(&cli);
-    tsrir::register_output_options(&cli);
+    tsrir::OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);
+    tsrir::install_output_policy(policy);
     if (o.model.empty()) throw tsrir::Error("--model is required");
     o.input_list = args[0];
     o.out_dir = args[1];

@@ -85,9 +85,11 @@ int main(int argc, char** argv) {
     tsrir::CommandLine cl("reverberate-data", kUsage);
     tsrir::ReverberateDataOptions o;
     o.Register(&cl);
-    tsrir::register_output_options(&cl);
+    tsrir::OutputPolicy policy(cl.program());
+    policy.Register(&cl);
     cl.accept_separate_boolean_values();  // "--shift-output true", as Kaldi's reverberate_data_dir.py
     std::vector<std::string> dirs = cl.parse(argc, argv, 2, 2);
+    tsrir::install_output_policy(policy);
     tsrir::reverberate_data_dir(dirs[0], dirs[1], o);
     return 0;
   });

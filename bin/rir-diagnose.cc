@@ -13,8 +13,10 @@ int main(int argc, char** argv) {
     CommandLine cli("rir-diagnose", diagnose::rir_diagnose_usage());
     diagnose::DiagnoseOptions options;
     options.Register(&cli);
-    register_output_options(&cli);
+    OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 3, 3);
+    install_output_policy(policy);
     std::string command = "rir-diagnose";
     for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
     return diagnose::run_rir_diagnose(options, args, command);

@@ -70,8 +70,10 @@ int apply_main(int argc, const char* const* argv) {
                  "Usage: rir-eq apply [options] <model> <in-rir-scp> <out-dir>\n"
                  "Example: rir-eq apply --seed=7 --num-threads=4 eq.model sim/rir.scp sim_eq\n");
   s.Register(&cl, EqProgramMode::kApply);
-  register_output_options(&cl);
+  OutputPolicy policy(cl.program());
+  policy.Register(&cl);
   const auto args = cl.parse(argc, argv, 3, 3);
+  install_output_policy(policy);
   const ApplySetOptions options = s.apply_options();
   const EqModel model = load_eq_model(args[0]);
   log_apply(equalize_rir_set(model, args[1], args[2], options));
@@ -101,8 +103,10 @@ int one_shot_main(int argc, const char* const* argv) {
   RirEqOptions s;
   CommandLine cl("rir-eq", kUsage);
   s.Register(&cl, EqProgramMode::kOneShot);
-  register_output_options(&cl);
+  OutputPolicy policy(cl.program());
+  policy.Register(&cl);
   const auto args = cl.parse(argc, argv, 2, 2);
+  install_output_policy(policy);
   if (s.real.empty()) throw Error("--real=<real-rir-scp> is required (or use 'rir-eq fit' / 'rir-eq apply')\n" + cl.hint());
   const ApplySetOptions options = s.apply_options();
   const EqModel model = fit_eq_model_on_set(s.real, s.fit_options());

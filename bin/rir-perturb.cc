@@ -27,8 +27,10 @@ int main(int argc, char** argv) {
         "  rir-perturb --lf-ringing-db=10 --seed=3 real_train/rir_list lfring_train\n");
     tsrir::PerturbSetOptions options;
     options.Register(&cli);
-    tsrir::register_output_options(&cli);
+    tsrir::OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const auto args = cli.parse(argc, argv, 2, 2);
+    tsrir::install_output_policy(policy);
     const tsrir::PerturbSetSummary s = tsrir::perturb_rir_set(args[0], args[1], options);
     tsrir::log_info("perturbed " + tsrir::format_perturb_summary(s) + " into " + args[1]);
     return 0;

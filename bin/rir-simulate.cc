@@ -28,9 +28,11 @@ int main(int argc, char** argv) {
     CommandLine cli("rir-simulate", usage);
     sim::SimulateOptions options;
     options.Register(&cli);
-    register_output_options(&cli);
+    OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const std::vector<std::string> args = cli.parse(argc, argv, 2, 2);
-    note_input(args[0]);
+    install_output_policy(policy);
+    run_inputs()->add(args[0]);
     const std::vector<sim::RoomSpec> rooms = sim::read_room_list(args[0]);
     log_info("simulating " + std::to_string(rooms.size()) + " RIRs with model '" + options.model + "'");
     sim::simulate_room_list(rooms, args[1], options);

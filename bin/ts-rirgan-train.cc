@@ -40,8 +40,10 @@ int main(int argc, char** argv) {
         "  ts-rirgan-train --real=data/real/rir.scp --synthetic=data/gas/rir.scp \\\n"
         "      --steps=20000 --batch-size=64 --num-threads=8 exp/tsrirgan\n");
     o.Register(&cli);
-    tsrir::register_output_options(&cli);
+    tsrir::OutputPolicy policy(cli.program());
+    policy.Register(&cli);
     const auto args = cli.parse(argc, argv, 1, 1);
+    tsrir::install_output_policy(policy);
     o.model_dir = args[0];
     const tsrir::GanTrainResult r = tsrir::train_ts_rirgan(o);
     return r.interrupted ? 130 : 0;

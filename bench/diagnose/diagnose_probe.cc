@@ -96,13 +96,13 @@ int main(int argc, char** argv) {
   }
   const std::set<std::string>& effects = set_args.effects;
   const uint64_t seed = set_args.seed;
-  testing::HiddenOptions& options = set_args.options;
-  const auto rooms = testing::make_test_rooms(set_args.count, 77 + seed);
+  testdata::HiddenOptions& options = set_args.options;
+  const auto rooms = testdata::make_test_rooms(set_args.count, 77 + seed);
   if (strength >= 0.0) {
     if (effects.size() != 1) { std::cerr << "--strength needs exactly one effect\n"; return 2; }
     const std::string e = *effects.begin();
     const double k = strength;
-    const testing::TrueRoom stated = testing::true_room_from(rooms.front());
+    const testdata::TrueRoom stated = testdata::true_room_from(rooms.front());
     if (e == "time_offset") {
       options.fixed["latency_ms"] = 0.6 * k;                     // threshold 0.6 ms
     } else if (e == "band_absorption") {
@@ -114,23 +114,23 @@ int main(int argc, char** argv) {
       // 20 C, 30 % RH, attenuation scaled so that the 4 kHz decay rate rises by 1.05^k (threshold 5 %).
       options.fixed["temperature_c"] = 20.0;
       options.fixed["humidity_percent"] = 30.0;
-      const double base = testing::test_eyring_rate_per_s(stated)[6];
-      const double per_unit = testing::test_air_attenuation_db_per_m(4000.0, 20.0, 30.0) * std::log(10.0) / 10.0 *
+      const double base = testdata::test_eyring_rate_per_s(stated)[6];
+      const double per_unit = testdata::test_air_attenuation_db_per_m(4000.0, 20.0, 30.0) * std::log(10.0) / 10.0 *
                               stated.speed_of_sound_m_s;
       options.fixed["air_scale"] = (std::pow(1.05, k) - 1.0) * base / per_unit;
     } else if (e == "transducer_response") {
       // One peaking filter at 1 kHz whose octave level departs k dB from the mean over the
       // direct-sound bands the detector uses (threshold 1 dB).
       auto shape = [&](double g) {
-        const std::vector<testing::TestBiquad> chain = {testing::test_peaking(1000.0, g, 1.4, 16000.0)};
+        const std::vector<testdata::TestBiquad> chain = {testdata::test_peaking(1000.0, g, 1.4, 16000.0)};
         double sum = 0.0;
         int m = 0;
         for (int b = 0; b < kNumOctaveBands; ++b) {
           if (!diagnose::direct_band_reliable(b, 16000.0)) continue;
-          sum += testing::test_cascade_octave_gain_db(chain, kOctaveCentersHz[b], 16000.0);
+          sum += testdata::test_cascade_octave_gain_db(chain, kOctaveCentersHz[b], 16000.0);
           ++m;
         }
-        return testing::test_cascade_octave_gain_db(chain, 1000.0, 16000.0) - sum / m;
+        return testdata::test_cascade_octave_gain_db(chain, 1000.0, 16000.0) - sum / m;
       };
       double lo = 0.0, hi = 40.0;
       for (int i = 0; i < 60; ++i) ((shape(0.5 * (lo + hi)) < k) ? lo : hi) = 0.5 * (lo + hi);
@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
     }
     for (const auto& [name, v] : options.fixed) std::cout << "fixed " << name << " = " << v << "\n";
   }
-  auto set = testing::make_hidden_set(rooms, effects, seed, 16000.0, 1.0, options);
+  auto set = testdata::make_hidden_set(rooms, effects, seed, 16000.0, 1.0, options);
   if (gas_scattering >= 0.0) {
     const sim::Model gas = sim::Model::parse("gas");
     for (size_t i = 0; i < rooms.size(); ++i) {

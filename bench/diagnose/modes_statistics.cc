@@ -97,8 +97,8 @@ int main(int argc, char** argv) {
   }
   const uint64_t seed = args.seed;
   const size_t count = args.count;
-  const auto rooms = testing::make_test_rooms(count, 77 + seed);
-  const testing::HiddenSet set = testing::make_hidden_set(rooms, args.effects, seed, 16000.0, 1.0, args.options);
+  const auto rooms = testdata::make_test_rooms(count, 77 + seed);
+  const testdata::HiddenSet set = testdata::make_hidden_set(rooms, args.effects, seed, 16000.0, 1.0, args.options);
   const sim::Model gas = sim::Model::parse("gas");
   const sim::RoomSpec prepared = gas.prepare_room(rooms.front());
   const double schroeder = sim::schroeder_frequency_hz(prepared);

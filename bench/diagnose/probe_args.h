@@ -19,7 +19,7 @@ struct SetArgs {
   std::set<std::string> effects;
   uint64_t seed = 1;
   size_t count = 24;
-  testing::HiddenOptions options;
+  testdata::HiddenOptions options;
 };
 
 // Reads `arg` into *a when it is one of the set's arguments (returns false otherwise); throws

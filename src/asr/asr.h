@@ -14,7 +14,8 @@
 namespace tsrir {
 
 enum class RnnType { kGru, kLstm };
-const char* rnn_type_name(RnnType type);  // "gru" | "lstm" (the settings.txt spelling)
+const Choices<RnnType>& rnn_type_choices();  // "gru" | "lstm" (also the settings.txt spelling)
+const char* rnn_type_name(RnnType type);
 
 struct AsrModelConfig {
   int conv_layers = 2;

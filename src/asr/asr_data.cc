@@ -6,21 +6,23 @@
 #include "asr/asr_text.h"
 #include "io/audio_io.h"
 #include "io/data_dir.h"
-#include "io/owned_output.h"
+#include "io/input_ledger.h"
 #include "util/error.h"
 #include "util/parallel.h"
 
 namespace tsrir {
 
 std::vector<AsrUtterance> load_asr_utterances(const std::string& dir, const LogMelOptions& options,
-                                              bool require_text, int num_threads) {
+                                              bool require_text, int num_threads, InputLedger* inputs) {
   const DataDir data = read_data_dir(dir);
   const std::vector<std::string> ids = data.utterances();
   if (ids.empty()) throw Error(dir + ": the data dir has no utterances");
   if (require_text && data.text.empty()) throw Error(dir + "/text: missing (training needs transcripts)");
   // Inputs, so that no output of the program can be, contain or lie inside them (io/owned_output.h).
-  note_input(dir);
-  for (const auto& [recording, rx] : data.wav_scp) note_input(rx);
+  if (inputs) {
+    inputs->add(dir);
+    for (const auto& [recording, rx] : data.wav_scp) inputs->add(rx);
+  }
   std::vector<AsrUtterance> utts(ids.size());
   parallel_for(ids.size(), num_threads, [&](size_t i) {
     AsrUtterance& u = utts[i];

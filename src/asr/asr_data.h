@@ -7,6 +7,8 @@
 
 namespace tsrir {
 
+class InputLedger;
+
 struct AsrUtterance {
   std::string id;
   std::string text;             // normalised (asr_text.h); empty when the dir has no text
@@ -17,8 +19,9 @@ struct AsrUtterance {
 // Reads every utterance (wav.scp rxfilenames incl. pipes; segments cut from their recordings;
 // audio resampled to options.sample_rate_hz, first channel), in utterance order, on up to
 // num_threads threads. require_text: the dir must have a text entry for every utterance.
-// Errors name the dir, file and utterance.
+// Errors name the dir, file and utterance. The dir and every recording it reads are recorded in
+// `inputs` (null: nowhere).
 std::vector<AsrUtterance> load_asr_utterances(const std::string& data_dir, const LogMelOptions& options,
-                                              bool require_text, int num_threads);
+                                              bool require_text, int num_threads, InputLedger* inputs);
 
 }  // namespace tsrir

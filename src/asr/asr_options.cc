@@ -4,11 +4,22 @@
 #include <cmath>
 
 #include "asr/asr.h"
+#include "io/common_options.h"
 #include "util/error.h"
 
 namespace tsrir {
 
-const char* rnn_type_name(RnnType type) { return type == RnnType::kLstm ? "lstm" : "gru"; }
+const Choices<RnnType>& rnn_type_choices() {
+  static const Choices<RnnType> choices = {{"gru", RnnType::kGru}, {"lstm", RnnType::kLstm}};
+  return choices;
+}
+
+const char* rnn_type_name(RnnType type) {
+  for (const auto& [name, value] : rnn_type_choices()) {
+    if (value == type) return name.c_str();  // the table's own storage: static
+  }
+  return "gru";
+}
 
 void LogMelOptions::Register(OptionsItf* opts) {
   opts->Register("sample-rate", &sample_rate_hz, "Audio is resampled to this rate (Hz)");
@@ -26,8 +37,7 @@ void AsrModelConfig::Register(OptionsItf* opts) {
   opts->Register("conv-channels", &conv_channels, "Channels of the convolutions");
   opts->Register("conv-kernel", &conv_kernel, "Kernel width of the convolutions (odd)");
   opts->Register("subsampling", &subsampling, "Time stride of the first convolution (1..4)");
-  opts->RegisterEnum("rnn-type", &rnn_type, {{"gru", RnnType::kGru}, {"lstm", RnnType::kLstm}},
-                     "Recurrent layer type");
+  opts->RegisterEnum("rnn-type", &rnn_type, rnn_type_choices(), "Recurrent layer type");
   opts->Register("rnn-layers", &rnn_layers, "Bidirectional recurrent layers");
   opts->Register("rnn-hidden", &rnn_hidden, "Hidden units per direction");
   opts->Register("dropout", &dropout, "Dropout after the convolutions, between and after the recurrent layers");
@@ -45,9 +55,9 @@ void AsrModelConfig::validate() const {
 void AsrTrainOptions::Register(OptionsItf* opts) {
   opts->Register("epochs", &epochs, "Total training epochs (a resumed run continues to this count)");
   opts->Register("max-minutes", &max_minutes, "Stop after this many minutes of training with a checkpoint (0 = no limit)");
-  opts->Register("seed", &seed, "Random seed (initialisation, batch order, masks, dropout)");
-  opts->RegisterAlias("random-seed", "seed");
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  CommonOptions(opts)
+      .seed(&seed, "the initialisation, batch order, masks and dropout")
+      .threads(&num_threads, "LibTorch's CPU threads and feature extraction");
   register_compute_device(opts, &device);
   opts->Register("batch-size", &batch_size, "Utterances per step (batches group similar lengths)");
   opts->Register("sample-copies", &sample_copies,
@@ -79,7 +89,7 @@ void AsrTrainOptions::validate() const {
 }
 
 void AsrDecodeOptions::Register(OptionsItf* opts) {
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and feature extraction");
+  CommonOptions(opts).threads(&num_threads, "LibTorch's CPU threads and feature extraction");
   register_compute_device(opts, &device);
   opts->Register("batch-size", &batch_size, "Utterances per forward pass");
 }

@@ -1,8 +1,5 @@
 #include "asr/asr_settings.h"
 
-#include <fstream>
-#include <sstream>
-
 #include "io/atomic_output.h"
 #include "util/error.h"
 #include "util/strings.h"
@@ -10,129 +7,91 @@
 namespace tsrir {
 namespace {
 
-std::string num(double v) { return format_double(v, 12); }
+// settings.txt holds the options that define the features, the network and the training run, under
+// their option names (AsrTrainOptions::Register), sorted, with 12 significant digits: the bytes of
+// the files written before the settings followed the options, five of whose keys are kept.
+class AsrSettingsFile {
+ public:
+  AsrSettingsFile() : file_("tsrir-asr-ctc-1", "the settings of an asr-train model", style()) {
+    options_.Register(&file_);
+    file_.Register("data-dir", &data_dir_, "the training data dir (absolute)");
+    // What a resumed run may change (asr.h): not settings.
+    file_.Exclude({"epochs", "max-minutes", "num-threads", "device", "resume", "progress-interval"});
+    // Added after models were written (main wrote it only when on): older files read as off.
+    file_.OmitWhenDefault({"sample-copies"});
+    file_.Rename("frame-length", "frame-length-ms");
+    file_.Rename("frame-shift", "frame-shift-ms");
+    file_.Rename("low-freq", "low-hz");
+    file_.Rename("high-freq", "high-hz");
+    file_.Rename("preemphasis-coefficient", "preemphasis");
+  }
+  AsrSettingsFile(const AsrSettingsFile&) = delete;  // file_ points into options_
+  AsrSettingsFile& operator=(const AsrSettingsFile&) = delete;
 
-const std::string& get(const AsrSettings& s, const std::string& key, const std::string& where) {
-  auto it = s.find(key);
-  if (it == s.end()) throw Error(where + ": settings lack '" + key + "'");
-  return it->second;
-}
+  AsrTrainOptions& options() { return options_; }
+  std::string& data_dir() { return data_dir_; }
+  SettingsFile& file() { return file_; }
 
-double get_double(const AsrSettings& s, const std::string& key, const std::string& where) {
-  return parse_double(get(s, key, where), where + ": " + key);
-}
-
-int get_int(const AsrSettings& s, const std::string& key, const std::string& where) {
-  return int(parse_int(get(s, key, where), where + ": " + key));
-}
+ private:
+  static SettingsStyle style() {
+    SettingsStyle s;
+    s.sorted = true;
+    s.double_digits = 12;
+    s.require_all = true;
+    return s;
+  }
+  AsrTrainOptions options_;
+  std::string data_dir_;
+  SettingsFile file_;
+};
 
 }  // namespace
 
-AsrSettings asr_settings_of(const AsrTrainOptions& o) {
-  AsrSettings s;
-  s["format"] = "tsrir-asr-ctc-1";
-  s["sample-rate"] = num(o.features.sample_rate_hz);
-  s["frame-length-ms"] = num(o.features.frame_length_ms);
-  s["frame-shift-ms"] = num(o.features.frame_shift_ms);
-  s["num-mel-bins"] = std::to_string(o.features.num_mel_bins);
-  s["low-hz"] = num(o.features.low_hz);
-  s["high-hz"] = num(o.features.high_hz);
-  s["preemphasis"] = num(o.features.preemphasis);
-  s["conv-layers"] = std::to_string(o.model.conv_layers);
-  s["conv-channels"] = std::to_string(o.model.conv_channels);
-  s["conv-kernel"] = std::to_string(o.model.conv_kernel);
-  s["subsampling"] = std::to_string(o.model.subsampling);
-  s["rnn-type"] = rnn_type_name(o.model.rnn_type);
-  s["rnn-layers"] = std::to_string(o.model.rnn_layers);
-  s["rnn-hidden"] = std::to_string(o.model.rnn_hidden);
-  s["dropout"] = num(o.model.dropout);
-  s["seed"] = std::to_string(o.seed);
-  s["batch-size"] = std::to_string(o.batch_size);
-  // Written only when on, so that models trained before the option keep their settings.
-  if (o.sample_copies) s["sample-copies"] = "true";
-  s["learning-rate"] = num(o.learning_rate);
-  s["grad-clip"] = num(o.grad_clip);
-  s["time-masks"] = std::to_string(o.time_masks);
-  s["max-time-mask"] = num(o.max_time_mask);
-  s["freq-masks"] = std::to_string(o.freq_masks);
-  s["max-freq-mask"] = std::to_string(o.max_freq_mask);
-  s["data-dir"] = absolute_path(o.data_dir);
-  return s;
+AsrSettings asr_settings_of(const AsrTrainOptions& options) {
+  AsrSettingsFile settings;
+  settings.options() = options;
+  settings.data_dir() = absolute_path(options.data_dir);
+  return settings.file().values();
 }
 
-std::string asr_settings_text(const AsrSettings& s) {
-  std::ostringstream os;
-  for (const auto& [k, v] : s) os << k << ' ' << v << '\n';
-  return os.str();
+std::string asr_settings_text(const AsrSettings& settings) {
+  std::string text;
+  for (const auto& [key, value] : settings) text += key + ' ' + value + '\n';
+  return text;
 }
 
-void write_asr_settings(const std::string& path, const AsrSettings& s) {
+void write_asr_settings(const std::string& path, const AsrSettings& settings) {
   AtomicTextFile out(path);
-  out.stream() << asr_settings_text(s);
+  out.stream() << asr_settings_text(settings);
   out.commit();
 }
 
 AsrSettings parse_asr_settings(const std::string& text, const std::string& where) {
-  AsrSettings s;
-  std::istringstream in(text);
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    const std::string t = trim(line);
-    if (t.empty()) continue;
-    const size_t space = t.find(' ');
-    if (space == std::string::npos) throw Error(located(where, n, "expected 'key value', got '" + t + "'"));
-    s[t.substr(0, space)] = trim(t.substr(space + 1));
-  }
-  if (s.count("format") == 0 || s["format"] != "tsrir-asr-ctc-1") {
-    throw Error(where + ": not the settings of an asr-train model (format tsrir-asr-ctc-1)");
-  }
-  return s;
+  AsrSettingsFile settings;
+  settings.file().parse(text, where);  // every value checked, errors at file:line
+  return settings.file().read(text, where);
 }
 
 AsrSettings read_asr_settings(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open (is this an asr-train model dir?)");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_asr_settings(buffer.str(), path);
-}
-
-LogMelOptions feature_options_of(const AsrSettings& s, const std::string& where) {
-  LogMelOptions f;
-  f.sample_rate_hz = get_double(s, "sample-rate", where);
-  f.frame_length_ms = get_double(s, "frame-length-ms", where);
-  f.frame_shift_ms = get_double(s, "frame-shift-ms", where);
-  f.num_mel_bins = get_int(s, "num-mel-bins", where);
-  f.low_hz = get_double(s, "low-hz", where);
-  f.high_hz = get_double(s, "high-hz", where);
-  f.preemphasis = get_double(s, "preemphasis", where);
-  return f;
-}
-
-AsrModelConfig model_config_of(const AsrSettings& s, const std::string& where) {
-  AsrModelConfig m;
-  m.conv_layers = get_int(s, "conv-layers", where);
-  m.conv_channels = get_int(s, "conv-channels", where);
-  m.conv_kernel = get_int(s, "conv-kernel", where);
-  m.subsampling = get_int(s, "subsampling", where);
-  const std::string& rnn = get(s, "rnn-type", where);
-  if (rnn != "gru" && rnn != "lstm") throw Error(where + ": rnn-type must be gru or lstm, got '" + rnn + "'");
-  m.rnn_type = rnn == "lstm" ? RnnType::kLstm : RnnType::kGru;
-  m.rnn_layers = get_int(s, "rnn-layers", where);
-  m.rnn_hidden = get_int(s, "rnn-hidden", where);
-  m.dropout = get_double(s, "dropout", where);
-  return m;
-}
-
-std::string settings_difference(const AsrSettings& stored, const AsrSettings& asked) {
-  std::string diff;
-  for (const auto& [k, v] : stored) {
-    auto it = asked.find(k);
-    if (it == asked.end() || it->second != v) diff += " --" + k + "=" + v;
+  std::string text;
+  try {
+    text = read_settings_text(path);
+  } catch (const Error&) {
+    throw Error(path + ": cannot open (is this an asr-train model dir?)");
   }
-  return diff;
+  return parse_asr_settings(text, path);
+}
+
+LogMelOptions feature_options_of(const AsrSettings& stored, const std::string& where) {
+  AsrSettingsFile settings;
+  settings.file().apply(stored, where);
+  return settings.options().features;
+}
+
+AsrModelConfig model_config_of(const AsrSettings& stored, const std::string& where) {
+  AsrSettingsFile settings;
+  settings.file().apply(stored, where);
+  return settings.options().model;
 }
 
 }  // namespace tsrir

@@ -1,14 +1,15 @@
 // settings.txt of an ASR model dir: "key value" lines that define the features, the network and
-// the training run (not the epoch count or time limit, which a resumed run may extend).
+// the training run (not the epoch count or time limit, which a resumed run may extend), written and
+// read through AsrTrainOptions::Register (util/settings_file.h): an option added there is a setting.
 #pragma once
-#include <map>
 #include <string>
 
 #include "asr/asr.h"
+#include "util/settings_file.h"
 
 namespace tsrir {
 
-using AsrSettings = std::map<std::string, std::string>;
+using AsrSettings = SettingsValues;
 
 AsrSettings asr_settings_of(const AsrTrainOptions& options);
 void write_asr_settings(const std::string& path, const AsrSettings& settings);
@@ -19,7 +20,6 @@ AsrSettings parse_asr_settings(const std::string& text, const std::string& where
 // The features and network of a stored model. Errors name `where`.
 LogMelOptions feature_options_of(const AsrSettings& settings, const std::string& where);
 AsrModelConfig model_config_of(const AsrSettings& settings, const std::string& where);
-// Settings that differ, as " --key=stored" (empty when equal).
-std::string settings_difference(const AsrSettings& stored, const AsrSettings& asked);
+// Settings that differ: settings_difference (util/settings_file.h).
 
 }  // namespace tsrir

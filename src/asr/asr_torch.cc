@@ -246,7 +246,7 @@ torch::Device torch_device_of(ComputeDevice device) {
 // The utterances with a transcript (others are reported and skipped) and their character targets.
 std::vector<AsrUtterance> load_training_set(const AsrTrainOptions& o, std::vector<std::vector<int>>* targets) {
   const auto load_start = Clock::now();
-  std::vector<AsrUtterance> all = load_asr_utterances(o.data_dir, o.features, true, o.num_threads);
+  std::vector<AsrUtterance> all = load_asr_utterances(o.data_dir, o.features, true, o.num_threads, run_inputs());
   std::vector<AsrUtterance> utts;
   size_t empty = 0;
   for (auto& u : all) {
@@ -442,8 +442,8 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
   const auto start = Clock::now();
   const std::string settings_path = (fs::path(o.model_dir) / "settings.txt").string();
   const std::string checkpoint_path = (fs::path(o.model_dir) / "checkpoint.pt").string();
-  note_input(settings_path);
-  note_input(checkpoint_path);
+  run_inputs()->add(settings_path);
+  run_inputs()->add(checkpoint_path);
   const AsrSettings settings = read_asr_settings(settings_path);
   const LogMelOptions features = feature_options_of(settings, settings_path);
   const AsrModelConfig config = model_config_of(settings, settings_path);
@@ -463,7 +463,7 @@ AsrDecodeResult decode_asr(const AsrDecodeOptions& o) {
   model->eval();
   torch::NoGradGuard no_grad;
 
-  const std::vector<AsrUtterance> utts = load_asr_utterances(o.data_dir, features, false, o.num_threads);
+  const std::vector<AsrUtterance> utts = load_asr_utterances(o.data_dir, features, false, o.num_threads, run_inputs());
   std::vector<std::string> hyps(utts.size());
   for (size_t i = 0; i < utts.size(); i += size_t(o.batch_size)) {
     std::vector<const AsrUtterance*> batch;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "io/kaldi_lists.h"
+
 namespace tsrir {
 
 struct RirChoice {
@@ -20,7 +22,7 @@ struct RirChoice {
 struct NoiseChoice {
   std::string id;
   std::string noise_type;     // a registered noise type: "isotropic" | "point-source"
-  std::string bg_fg_type = "background";  // "background" | "foreground"
+  BgFgType bg_fg_type = BgFgType::kBackground;
   std::string room_linkage;   // isotropic noises: the room they were recorded in
   std::string rxfilename;
   std::string where;

@@ -18,7 +18,7 @@ class IsotropicNoise : public NoiseType {
     if (!rooms.count(entry.room_linkage))
       log_warning(entry.where + ": isotropic noise '" + entry.id + "' is linked to room '" + entry.room_linkage +
                   "', which no --rir-set-parameters list contains: it is never used (as in Kaldi)");
-    if (entry.bg_fg_type == "foreground")
+    if (entry.bg_fg_type == BgFgType::kForeground)
       log_warning(entry.where + ": isotropic noises are always added as background noise (as in Kaldi)");
   }
 

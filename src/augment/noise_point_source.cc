@@ -59,7 +59,7 @@ class PointSourceNoise : public NoiseType {
         for (size_t r : room->second) w.push_back(context.sources.rirs[r].probability);
         rir = static_cast<long>(room->second[weighted_index(w, u_rir)]);
       }
-      if (context.sources.noises[noise].bg_fg_type == "foreground") {
+      if (context.sources.noises[noise].bg_fg_type == BgFgType::kForeground) {
         PlannedNoise p;
         p.noise = static_cast<long>(noise);
         p.rir = rir;

@@ -25,15 +25,17 @@ size_t signed_peak(const std::vector<float>& rir) {
 
 }  // namespace
 
-SnrReference parse_snr_reference(const std::string& name) {
-  if (name == "early") return SnrReference::kEarlyReverb;
-  if (name == "full") return SnrReference::kFullReverb;
-  throw Error("unknown SNR reference '" + name + "' (expected early or full)");
+const Choices<SnrReference>& snr_reference_choices() {
+  static const Choices<SnrReference> choices = {{"early", SnrReference::kEarlyReverb},
+                                                {"full", SnrReference::kFullReverb}};
+  return choices;
 }
 
-std::string snr_reference_name(SnrReference reference) {
-  return reference == SnrReference::kEarlyReverb ? "early" : "full";
+SnrReference parse_snr_reference(const std::string& name) {
+  return parse_choice(snr_reference_choices(), name, "SNR reference");
 }
+
+std::string snr_reference_name(SnrReference reference) { return choice_name(snr_reference_choices(), reference); }
 
 void ReverbOptions::Register(OptionsItf* opts) {
   opts->Register("shift-output", &shift_output,
@@ -41,8 +43,7 @@ void ReverbOptions::Register(OptionsItf* opts) {
                  "false: the whole reverberant signal (input length + RIR length - 1)");
   opts->Register("normalize-output", &normalize_output,
                  "Scale the output to the power of the input after reverberation and noise");
-  opts->RegisterEnum("snr-reference", &snr_reference,
-                     {{"early", SnrReference::kEarlyReverb}, {"full", SnrReference::kFullReverb}},
+  opts->RegisterEnum("snr-reference", &snr_reference, snr_reference_choices(),
                      "tsrir extension: what the SNRs are relative to: early = Kaldi's early-reverberation "
                      "energy (speech convolved with the RIR from 1 ms before to 50 ms after its peak), full = "
                      "the whole reverberant speech");

@@ -20,7 +20,8 @@ enum class SnrReference {
   // The whole reverberant speech x ⊛ h, averaged over its full length N + M - 1.
   kFullReverb,
 };
-SnrReference parse_snr_reference(const std::string& name);  // "early" | "full"
+const Choices<SnrReference>& snr_reference_choices();       // "early" | "full"
+SnrReference parse_snr_reference(const std::string& name);
 std::string snr_reference_name(SnrReference reference);
 
 // An RIR ready to be applied many times (filter spectra computed once; thread-safe to share).

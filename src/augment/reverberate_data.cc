@@ -2,9 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
-#include <cstdlib>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -13,7 +14,7 @@
 
 #include "augment/augment_plan.h"
 #include "augment/augment_sources.h"
-#include "augment/noise_signal.h"
+#include "augment/plan_renderer.h"
 #include "augment/rate_policy.h"
 #include "augment/reverberate_stream.h"
 #include "augment/sampling.h"
@@ -21,6 +22,7 @@
 #include "augment/wav_reverberate.h"
 #include "io/atomic_output.h"
 #include "io/audio_io.h"
+#include "io/common_options.h"
 #include "io/data_dir.h"
 #include "io/kaldi_table.h"
 #include "io/owned_output.h"
@@ -31,45 +33,7 @@
 #include "util/strings.h"
 
 namespace tsrir {
-namespace {
-
 namespace fs = std::filesystem;
-
-// Loads each (item, sample rate) once, on first use, from whichever thread needs it first;
-// other threads wanting the same item wait for that load instead of repeating it.
-template <typename T>
-class LoadOnceCache {
- public:
-  std::shared_ptr<const T> get(const std::pair<long, double>& key, const std::function<T()>& load) {
-    std::shared_ptr<Slot> slot;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      auto& s = slots_[key];
-      if (!s) s = std::make_shared<Slot>();
-      slot = s;
-    }
-    std::call_once(slot->once, [&] {
-      try {
-        slot->value = std::make_shared<const T>(load());
-      } catch (...) {
-        slot->error = std::current_exception();
-      }
-    });
-    if (slot->error) std::rethrow_exception(slot->error);
-    return slot->value;
-  }
-
- private:
-  struct Slot {
-    std::once_flag once;
-    std::shared_ptr<const T> value;
-    std::exception_ptr error;
-  };
-  std::mutex mutex_;
-  std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
-};
-
-}  // namespace
 
 // A pipe's WAV header is enough when it states the size (flac -d, sox): the command is stopped
 // after it, as Kaldi's get_reco2dur.sh does; otherwise it is read to the end.
@@ -165,6 +129,17 @@ std::string default_pipe_program() {
   return "wav-reverberate";
 }
 
+const Choices<NoiseStart>& noise_start_choices() {
+  static const Choices<NoiseStart> choices = {{"zero", NoiseStart::kZero}, {"random", NoiseStart::kRandom}};
+  return choices;
+}
+
+const Choices<PointSourceNoiseRir>& point_source_noise_rir_choices() {
+  static const Choices<PointSourceNoiseRir> choices = {{"same-room", PointSourceNoiseRir::kSameRoom},
+                                                       {"none", PointSourceNoiseRir::kNone}};
+  return choices;
+}
+
 void ReverberateDataOptions::Register(OptionsItf* opts) {
   opts->Register("rir-set-parameters", &rir_set_parameters,
                  "'[weight,] rir_list': an RIR list (Kaldi rir_list or scp) and its weight; repeatable");
@@ -185,17 +160,18 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
                  "at most floor(N * duration / 60) point-source noises per recording (Kaldi)");
   opts->Register("max-noises-per-recording", &max_noises_per_recording,
                  "extension: if > 0, 1..N point-source noises per recording whatever its duration");
-  opts->Register("noise-start", &noise_start,
-                 "zero (Kaldi: background noises extended from their start) or random (extension: from a random "
-                 "offset, looped over the whole recording)");
-  opts->Register("point-source-noise-rir", &point_source_noise_rir,
-                 "same-room (Kaldi: point sources convolved with an RIR of the recording's room) or none (extension)");
-  opts->Register("pipe-dialect", &pipe_dialect,
-                 "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
+  opts->RegisterEnum("noise-start", &noise_start, noise_start_choices(),
+                     "zero (Kaldi: background noises extended from their start) or random (extension: from a "
+                     "random offset, looped over the whole recording)");
+  opts->RegisterEnum("point-source-noise-rir", &point_source_noise_rir, point_source_noise_rir_choices(),
+                     "same-room (Kaldi: point sources convolved with an RIR of the recording's room) or none "
+                     "(extension)");
+  opts->RegisterEnum("pipe-dialect", &pipe_dialect,
+                     {{"auto", PipeDialect::kAuto}, {"tsrir", PipeDialect::kTsrir}, {"kaldi", PipeDialect::kKaldi}},
+                     "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
   reverb.Register(opts);
   opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
-  opts->Register("random-seed", &random_seed, "random seed (any integer; all draws derive from it)");
-  opts->RegisterAlias("seed", "random-seed");
+  CommonOptions(opts).seed(&random_seed, "every draw");
   opts->Register("sample-rate", &source_sampling_rate_hz,
                  "the data dir's rate in Hz: RIRs and noises are resampled to it (Kaldi's --source-sampling-rate) "
                  "and so is a recording at another rate (in a pipe: tsrir's wav-reverberate --sample-rate); "
@@ -206,235 +182,298 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
   opts->Register("write-wavs", &write_wavs, "write 16-bit wavs into this directory instead of pipes");
   opts->Register("pipe-program", &pipe_program,
                  "program called by the pipes (default: wav-reverberate next to this program)");
-  opts->Register("num-threads", &num_threads, "threads for --write-wavs");
+  CommonOptions(opts).threads(&num_threads, "--write-wavs writes recordings in parallel");
   opts->Register("max-in-memory-duration", &max_in_memory_s,
                  "with --write-wavs: recordings longer than this many seconds are reverberated in passes over the "
                  "file, with memory independent of their length and the same wav (temporaries in the wav dir); "
                  "0 = all");
 }
 
-ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
-                                            const ReverberateDataOptions& options) {
-  if (options.speech_rvb_probability < 0 || options.speech_rvb_probability > 1)
-    throw Error("--speech-rvb-probability must be in [0, 1]");
-  if (options.isotropic_noise_addition_probability < 0 || options.isotropic_noise_addition_probability > 1)
-    throw Error("--isotropic-noise-addition-probability must be in [0, 1]");
-  if (options.pointsource_noise_addition_probability < 0 || options.pointsource_noise_addition_probability > 1)
-    throw Error("--pointsource-noise-addition-probability must be in [0, 1]");
-  if (options.max_noises_per_minute < 0) throw Error("--max-noises-per-minute cannot be negative");
-  if (options.max_noises_per_recording < 0) throw Error("--max-noises-per-recording cannot be negative");
-  if (options.noise_start != "random" && options.noise_start != "zero")
-    throw Error("--noise-start must be random or zero, got '" + options.noise_start + "'");
-  if (options.point_source_noise_rir != "same-room" && options.point_source_noise_rir != "none")
-    throw Error("--point-source-noise-rir must be same-room or none, got '" + options.point_source_noise_rir + "'");
-  if (options.pipe_dialect != "auto" && options.pipe_dialect != "tsrir" && options.pipe_dialect != "kaldi")
-    throw Error("--pipe-dialect must be auto, tsrir or kaldi, got '" + options.pipe_dialect + "'");
-  if (absolute_path(in_dir) == absolute_path(out_dir)) throw Error("input and output data dirs are the same");
+std::string spelled(const std::string& option, OptionSpelling spelling) {
+  if (spelling == OptionSpelling::kCommandLine) return "--" + option;
+  std::string name = option;
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
 
-  const DataDir input = read_data_dir(in_dir);
-  if (input.wav_scp.empty()) throw Error(in_dir + "/wav.scp: no recordings");
-  const AugmentSources sources = load_augment_sources(options.rir_set_parameters, options.noise_set_parameters,
-                                                      options.rir_smoothing_weight, options.noise_smoothing_weight);
-  if (sources.rirs.empty() && sources.noises.empty())
-    throw Error("nothing to apply: give --rir-set-parameters and/or --noise-set-parameters");
-  const SnrSpec foreground_snrs = SnrSpec::parse(options.foreground_snrs, "--foreground-snrs");
-  const SnrSpec background_snrs = SnrSpec::parse(options.background_snrs, "--background-snrs");
-  const std::map<std::string, double> durations = recording_durations(in_dir, input, options.num_threads);
-  const auto& [first_id, first_rx] = *input.wav_scp.begin();
-  const DirSampleRate dir_rate(options.source_sampling_rate_hz, first_id, first_rx,
-                               in_dir + "/wav.scp: recording '" + first_id + "'");
+namespace {
 
-  PlanOptions plan_options;
-  plan_options.num_replications = options.num_replications;
-  plan_options.include_original_data = options.include_original_data;
-  plan_options.prefix = options.prefix;
-  if (plan_options.prefix.empty() && (options.num_replications > 1 || options.include_original_data)) {
-    log_warning("--prefix set to 'rvb' as there is more than one copy of each utterance (as Kaldi does)");
-    plan_options.prefix = "rvb";
+void check_probability(double p, const std::string& option, OptionSpelling spelling) {
+  if (p < 0 || p > 1) throw Error(spelled(option, spelling) + " must be in [0, 1]");
+}
+
+void check_not_negative(int n, const std::string& option, OptionSpelling spelling) {
+  if (n < 0) throw Error(spelled(option, spelling) + " cannot be negative");
+}
+
+}  // namespace
+
+ReverberatePlan to_plan(const ReverberateDataOptions& o, OptionSpelling spelling) {
+  check_probability(o.speech_rvb_probability, "speech-rvb-probability", spelling);
+  check_probability(o.isotropic_noise_addition_probability, "isotropic-noise-addition-probability", spelling);
+  check_probability(o.pointsource_noise_addition_probability, "pointsource-noise-addition-probability", spelling);
+  check_not_negative(o.max_noises_per_minute, "max-noises-per-minute", spelling);
+  check_not_negative(o.max_noises_per_recording, "max-noises-per-recording", spelling);
+  if (o.source_sampling_rate_hz < 0) {
+    throw Error(spelled("sample-rate", spelling) + " must be > 0 Hz (or 0: the first recording's), got " +
+                format_double(o.source_sampling_rate_hz));
   }
-  plan_options.speech_rvb_probability = options.speech_rvb_probability;
-  plan_options.noise.isotropic_noise_addition_probability = options.isotropic_noise_addition_probability;
-  plan_options.noise.pointsource_noise_addition_probability = options.pointsource_noise_addition_probability;
-  plan_options.noise.max_noises_per_minute = options.max_noises_per_minute;
-  plan_options.noise.max_noises_per_recording = options.max_noises_per_recording;
-  plan_options.noise.random_noise_start = options.noise_start == "random";
-  plan_options.noise.point_source_noise_rir = options.point_source_noise_rir == "same-room";
-  plan_options.random_seed = options.random_seed;
-  std::vector<RecordingPlan> plans =
-      plan_recordings(input.wav_scp, durations, sources, foreground_snrs, background_snrs, plan_options);
+  ReverberatePlan plan;
+  plan.sources = load_augment_sources(o.rir_set_parameters, o.noise_set_parameters, o.rir_smoothing_weight,
+                                      o.noise_smoothing_weight);
+  if (plan.sources.rirs.empty() && plan.sources.noises.empty()) {
+    throw Error("nothing to apply: give " + spelled("rir-set-parameters", spelling) + " and/or " +
+                spelled("noise-set-parameters", spelling));
+  }
+  plan.foreground_snrs = SnrSpec::parse(o.foreground_snrs, spelled("foreground-snrs", spelling));
+  plan.background_snrs = SnrSpec::parse(o.background_snrs, spelled("background-snrs", spelling));
+  PlanOptions& p = plan.planning;
+  p.num_replications = o.num_replications;
+  p.include_original_data = o.include_original_data;
+  p.prefix = o.prefix;
+  if (p.prefix.empty() && (o.num_replications > 1 || o.include_original_data)) {
+    log_warning("--prefix set to 'rvb' as there is more than one copy of each utterance (as Kaldi does)");
+    p.prefix = "rvb";
+  }
+  p.speech_rvb_probability = o.speech_rvb_probability;
+  p.noise.isotropic_noise_addition_probability = o.isotropic_noise_addition_probability;
+  p.noise.pointsource_noise_addition_probability = o.pointsource_noise_addition_probability;
+  p.noise.max_noises_per_minute = o.max_noises_per_minute;
+  p.noise.max_noises_per_recording = o.max_noises_per_recording;
+  p.noise.random_noise_start = o.noise_start == NoiseStart::kRandom;
+  p.noise.point_source_noise_rir = o.point_source_noise_rir == PointSourceNoiseRir::kSameRoom;
+  p.random_seed = o.random_seed;
+  plan.reverb = o.reverb;
+  plan.sample_rate_hz = o.source_sampling_rate_hz;
+  return plan;
+}
 
+namespace {
+
+// The data dir's recordings, every copy planned; looped noises' offsets resolved in seconds
+// (each looped noise's duration measured once).
+std::vector<RecordingPlan> plan_copies(const std::string& in_dir, const DataDir& input, const ReverberatePlan& plan,
+                                       int num_threads) {
+  const std::map<std::string, double> durations = recording_durations(in_dir, input, num_threads);
+  std::vector<RecordingPlan> plans = plan_recordings(input.wav_scp, durations, plan.sources, plan.foreground_snrs,
+                                                     plan.background_snrs, plan.planning);
   std::map<long, double> noise_duration_s;
-  std::set<long> used_rirs;
-  for (const RecordingPlan& plan : plans) {
-    for (const PlannedNoise& noise : plan.noises) {
+  for (const RecordingPlan& recording : plans) {
+    for (const PlannedNoise& noise : recording.noises) {
       if (noise.loop && !noise_duration_s.count(noise.noise)) {
-        const NoiseChoice& n = sources.noises[static_cast<size_t>(noise.noise)];
+        const NoiseChoice& n = plan.sources.noises[static_cast<size_t>(noise.noise)];
         noise_duration_s[noise.noise] = audio_duration_s(n.rxfilename, n.where + " (noise '" + n.id + "')");
       }
-      if (noise.rir >= 0) used_rirs.insert(noise.rir);
     }
-    if (plan.rir >= 0) used_rirs.insert(plan.rir);
   }
   resolve_noise_offsets(noise_duration_s, &plans);
+  return plans;
+}
 
-  // Every input, so that no output lands on one (io/owned_output.h).
-  note_input(in_dir);
-  for (const auto& [id, rx] : input.wav_scp) note_input(rx);
-  for (const RirChoice& r : sources.rirs) note_input(r.rxfilename);
-  for (const NoiseChoice& n : sources.noises) note_input(n.rxfilename);
-  OwnedOutputDir out(out_dir);
-  DataDir output;
-  ReverberateDataSummary summary;
-  for (const RecordingPlan& plan : plans) {
-    summary.reverberated += plan.rir >= 0;
-    summary.with_noise += !plan.noises.empty();
-  }
-
-  std::unique_ptr<OwnedOutputDir> wav_dir;
-  if (options.write_wavs.empty()) {
-    // Pipes: fail now, not inside a feature-extraction job, on RIR files that cannot be read.
-    for (long r : used_rirs) {
-      const RirChoice& rir = sources.rirs[static_cast<size_t>(r)];
-      if (!is_pipe_rxfilename(rir.rxfilename)) audio_duration_s(rir.rxfilename, rir.where + " (RIR '" + rir.id + "')");
+// wav.scp of pipes that regenerate each recording. Fails now, not inside a feature-extraction job,
+// on RIR files that cannot be read and on recording files at another rate that the pipe cannot
+// resample (rate_policy.h).
+std::map<std::string, std::string> pipe_wav_scp(const std::vector<RecordingPlan>& plans, const ReverberatePlan& plan,
+                                                 const std::string& in_dir, const DataDir& input,
+                                                 const DirSampleRate& dir_rate, const ReverberateDataOptions& options) {
+  std::set<long> used_rirs;
+  for (const RecordingPlan& recording : plans) {
+    if (recording.rir >= 0) used_rirs.insert(recording.rir);
+    for (const PlannedNoise& noise : recording.noises) {
+      if (noise.rir >= 0) used_rirs.insert(noise.rir);
     }
-    PipeOptions pipe;
-    pipe.program = options.pipe_program.empty() ? default_pipe_program() : options.pipe_program;
-    pipe.reverb = options.reverb;
-    pipe.tsrir_extensions = options.pipe_dialect == "tsrir" ||
-                            (options.pipe_dialect == "auto" && is_tsrir_pipe_program(pipe.program));
-    if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
-    check_recording_rates(input.wav_scp, dir_rate, pipe.sample_rate_hz > 0, in_dir, options.num_threads);
-    for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = format_pipe(plan, sources, pipe);
-  } else {
-    const std::string final_wav_dir = absolute_path(options.write_wavs);
-    if (path_is_inside(out_dir, final_wav_dir))
-      throw Error("--write-wavs directory " + options.write_wavs + " must not contain the output data dir");
-    // The wavs belong to this data dir: another data dir's wavs in a shared --write-wavs directory
-    // are never replaced (it would point at different audio) unless --overwrite.
-    wav_dir = std::make_unique<OwnedOutputDir>(options.write_wavs, out_dir);
-    std::vector<std::string> wav_names;
-    for (const RecordingPlan& plan : plans) wav_names.push_back(plan.new_id + ".wav");
-    wav_dir->check_names(wav_names);
-    const std::string temp_wav_dir = wav_dir->path();
+  }
+  for (long r : used_rirs) {
+    const RirChoice& rir = plan.sources.rirs[static_cast<size_t>(r)];
+    if (!is_pipe_rxfilename(rir.rxfilename)) audio_duration_s(rir.rxfilename, rir.where + " (RIR '" + rir.id + "')");
+  }
+  PipeOptions pipe;
+  pipe.program = options.pipe_program.empty() ? default_pipe_program() : options.pipe_program;
+  pipe.reverb = plan.reverb;
+  pipe.tsrir_extensions = options.pipe_dialect == PipeDialect::kTsrir ||
+                          (options.pipe_dialect == PipeDialect::kAuto && is_tsrir_pipe_program(pipe.program));
+  if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
+  check_recording_rates(input.wav_scp, dir_rate, pipe.sample_rate_hz > 0, in_dir, options.num_threads);
+  std::map<std::string, std::string> wav_scp;
+  for (const RecordingPlan& recording : plans) wav_scp[recording.new_id] = format_pipe(recording, plan.sources, pipe);
+  return wav_scp;
+}
 
-    const ReverbOptions& reverb = options.reverb;
-
-    LoadOnceCache<PreparedRir> rir_cache;
-    LoadOnceCache<std::vector<float>> noise_cache;
-    std::atomic<size_t> done{0};
-    std::atomic<long long> clipped{0};
-    const auto started = std::chrono::steady_clock::now();
-    std::mutex progress_mutex;
-    auto last_report = started;
-    parallel_for(plans.size(), options.num_threads, [&](size_t i) {
-      const RecordingPlan& plan = plans[i];
-      if (plan.new_id.find('/') != std::string::npos)
-        throw Error("recording id '" + plan.new_id + "' contains '/', which cannot name a wav file");
-      const std::string where = in_dir + "/wav.scp: recording '" + plan.source_id + "'";
-      const std::string wav_path = temp_wav_dir + "/" + plan.new_id + ".wav";
-      SpeechInput speech = open_speech_input(plan.source_rx, options.max_in_memory_s, wav_path + ".input", where);
-      const AudioInfo speech_info = speech.on_disk() ? probe_audio(speech.path) : speech.info;
-      const double rate = dir_rate.rate_hz();
-      if (!speech.on_disk())
-        speech.channels = {dir_rate.speech_at_rate(std::move(speech.channels), speech_info.sample_rate_hz, where)};
-      else if (!dir_rate.accepts(speech_info.sample_rate_hz, where) || speech_info.channels > 1)
-        throw Error(where + ": longer than --max-in-memory-duration and at " + format_double(speech_info.sample_rate_hz) +
-                    " Hz with " + std::to_string(speech_info.channels) + " channel(s): only a mono recording at the " +
-                    "data dir's rate is reverberated in passes (resample or split it first)");
-      std::shared_ptr<const PreparedRir> rir;
-      auto load_rir = [&](long index) {
-        const RirChoice& choice = sources.rirs[static_cast<size_t>(index)];
-        return rir_cache.get({index, rate}, [&] {
-          const std::string what = choice.where + " (RIR '" + choice.id + "')";
-          return PreparedRir(first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what), rate);
-        });
-      };
-      if (plan.rir >= 0) rir = load_rir(plan.rir);
-      std::vector<AdditiveSignal> additive;
-      for (const PlannedNoise& planned : plan.noises) {
-        const NoiseChoice& choice = sources.noises[static_cast<size_t>(planned.noise)];
-        std::shared_ptr<const std::vector<float>> noise = noise_cache.get({planned.noise, rate}, [&] {
-          const std::string what = choice.where + " (noise '" + choice.id + "')";
-          return first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what);
-        });
-        std::shared_ptr<const PreparedRir> noise_rir;
-        if (planned.rir >= 0) noise_rir = load_rir(planned.rir);
-        additive.push_back(planned_noise_signal(planned, noise, noise_rir.get(), rate));
-      }
-      long long clipped_here = 0;
-      if (!speech.on_disk()) {
-        Signal result;
-        result.id = plan.new_id;
-        result.sample_rate_hz = rate;
-        result.samples = reverberate_channel(speech.channels.at(0), rate, rir.get(), additive, reverb);
-        speech.channels.clear();
-        AudioWriteOptions write_options;
-        write_options.clipped_samples = &clipped_here;
-        write_wav(wav_path, result, write_options);
-      } else {
-        log_info(where + ": longer than " + format_double(options.max_in_memory_s) +
-                 " s: reverberated in passes over the file (memory independent of its length)");
-        StreamChannel channel;
-        channel.rir = rir.get();
-        channel.additive = additive;
-        StreamSettings settings;
-        settings.temp_base = wav_path + ".spill";
-        clipped_here = reverberate_stream(speech.path, where, speech.rx, 0, {channel}, reverb, wav_path, settings)
-                           .clipped_samples;
-      }
-      clipped += clipped_here;
-      const size_t finished = ++done;
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_report > std::chrono::seconds(5) || finished == plans.size()) {
-        last_report = now;
-        const double elapsed = std::chrono::duration<double>(now - started).count();
-        log_info("wrote " + std::to_string(finished) + "/" + std::to_string(plans.size()) + " wavs (" +
-                 format_double(finished / std::max(elapsed, 1e-9), 4) + " per second)");
-      }
-    });
-    if (clipped > 0)
-      log_warning("clipped " + std::to_string(clipped.load()) + " samples in total; consider --normalize-output=true");
-    for (const RecordingPlan& plan : plans) output.wav_scp[plan.new_id] = final_wav_dir + "/" + plan.new_id + ".wav";
+// "wrote N/M wavs (R per second)" on stderr every 5 s and at the end.
+class WavProgress {
+ public:
+  explicit WavProgress(size_t total) : total_(total), started_(std::chrono::steady_clock::now()), last_(started_) {}
+  void one_done() {
+    const size_t finished = ++done_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ > std::chrono::seconds(5) || finished == total_) {
+      last_ = now;
+      const double elapsed = std::chrono::duration<double>(now - started_).count();
+      log_info("wrote " + std::to_string(finished) + "/" + std::to_string(total_) + " wavs (" +
+               format_double(finished / std::max(elapsed, 1e-9), 4) + " per second)");
+    }
   }
 
-  std::vector<int> copies;
-  for (int c = options.include_original_data ? 0 : 1; c <= options.num_replications; ++c) copies.push_back(c);
-  const std::string& prefix = plan_options.prefix;
+ private:
+  const size_t total_;
+  std::atomic<size_t> done_{0};
+  const std::chrono::steady_clock::time_point started_;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+// One recording's wav at `wav_path`, at the data dir's rate (rate_policy.h), in memory or, beyond
+// --max-in-memory-duration, in passes over the file; returns the samples clipped to 16 bits.
+long long write_one_wav(const RecordingPlan& recording, const std::string& in_dir, const std::string& wav_path,
+                        const ReverberateDataOptions& options, const DirSampleRate& dir_rate, PlanRenderer& renderer) {
+  if (recording.new_id.find('/') != std::string::npos)
+    throw Error("recording id '" + recording.new_id + "' contains '/', which cannot name a wav file");
+  const std::string where = in_dir + "/wav.scp: recording '" + recording.source_id + "'";
+  SpeechInput speech = open_speech_input(recording.source_rx, options.max_in_memory_s, wav_path + ".input", where);
+  const AudioInfo speech_info = speech.on_disk() ? probe_audio(speech.path) : speech.info;
+  const double rate = dir_rate.rate_hz();
+  if (!speech.on_disk()) {
+    speech.channels = {dir_rate.speech_at_rate(std::move(speech.channels), speech_info.sample_rate_hz, where)};
+  } else if (!dir_rate.accepts(speech_info.sample_rate_hz, where) || speech_info.channels > 1) {
+    throw Error(where + ": longer than --max-in-memory-duration and at " + format_double(speech_info.sample_rate_hz) +
+                " Hz with " + std::to_string(speech_info.channels) + " channel(s): only a mono recording at the " +
+                "data dir's rate is reverberated in passes (resample or split it first)");
+  }
+  long long clipped = 0;
+  if (!speech.on_disk()) {
+    Signal result;
+    result.id = recording.new_id;
+    result.sample_rate_hz = rate;
+    result.samples = renderer.render(speech.channels.at(0), rate, recording);
+    speech.channels.clear();
+    AudioWriteOptions write_options;
+    write_options.clipped_samples = &clipped;
+    write_wav(wav_path, result, write_options);
+    return clipped;
+  }
+  log_info(where + ": longer than " + format_double(options.max_in_memory_s) +
+           " s: reverberated in passes over the file (memory independent of its length)");
+  const std::shared_ptr<const PreparedRir> rir = renderer.rir(recording.rir, rate);
+  StreamChannel channel;
+  channel.rir = rir.get();
+  channel.additive = renderer.additive_signals(recording, rate);
+  StreamSettings settings;
+  settings.temp_base = wav_path + ".spill";
+  return reverberate_stream(speech.path, where, speech.rx, 0, {channel}, renderer.reverb(), wav_path, settings)
+      .clipped_samples;
+}
+
+// --write-wavs: every recording's wav, written into the wav dir's staging area (committed with the
+// data dir); returns wav.scp.
+std::map<std::string, std::string> write_wavs(const std::vector<RecordingPlan>& plans, const ReverberatePlan& plan,
+                                              const std::string& in_dir, const ReverberateDataOptions& options,
+                                              const DirSampleRate& dir_rate, const OwnedOutputDir& wav_dir) {
+  std::vector<std::string> wav_names;
+  for (const RecordingPlan& recording : plans) wav_names.push_back(recording.new_id + ".wav");
+  wav_dir.check_names(wav_names);
+  PlanRenderer renderer(plan.sources, plan.reverb);
+  WavProgress progress(plans.size());
+  std::atomic<long long> clipped{0};
+  parallel_for(plans.size(), options.num_threads, [&](size_t i) {
+    clipped += write_one_wav(plans[i], in_dir, wav_dir.path() + "/" + plans[i].new_id + ".wav", options, dir_rate,
+                             renderer);
+    progress.one_done();
+  });
+  if (clipped > 0)
+    log_warning("clipped " + std::to_string(clipped.load()) + " samples in total; consider --normalize-output=true");
+  const std::string final_wav_dir = absolute_path(options.write_wavs);
+  std::map<std::string, std::string> wav_scp;
+  for (const RecordingPlan& recording : plans) wav_scp[recording.new_id] = final_wav_dir + "/" + recording.new_id + ".wav";
+  return wav_scp;
+}
+
+// The copies' utterance tables (Kaldi's ids): utt2spk, text, utt2uniq (new id -> original), segments.
+void copy_utterance_tables(const DataDir& input, const std::string& prefix, const std::vector<int>& copies,
+                           DataDir* output) {
   for (int copy : copies) {
     for (const auto& [utt, spk] : input.utt2spk) {
       const std::string new_utt = copy_id(utt, prefix, copy);
-      output.utt2spk[new_utt] = copy_id(spk, prefix, copy);
+      output->utt2spk[new_utt] = copy_id(spk, prefix, copy);
       auto text = input.text.find(utt);
-      if (text != input.text.end()) output.text[new_utt] = text->second;
+      if (text != input.text.end()) output->text[new_utt] = text->second;
       auto uniq = input.utt2uniq.find(utt);
-      output.utt2uniq[new_utt] = uniq != input.utt2uniq.end() ? uniq->second : utt;
+      output->utt2uniq[new_utt] = uniq != input.utt2uniq.end() ? uniq->second : utt;
       auto seg = input.segments.find(utt);
       if (seg != input.segments.end()) {
         Segment s = seg->second;
         s.recording_id = copy_id(s.recording_id, prefix, copy);
-        output.segments[new_utt] = s;
+        output->segments[new_utt] = s;
       }
     }
   }
-  // Shifted outputs keep the input's length, so its durations carry over to the new ids.
-  if (options.reverb.shift_output) {
-    for (const RecordingPlan& plan : plans) output.reco2dur[plan.new_id] = plan.duration_s;
-  }
-  write_data_dir(out.path(), output);
-  if (fs::exists(in_dir + "/reco2file_and_channel"))
-    copy_renamed_table(in_dir + "/reco2file_and_channel", out.path() + "/reco2file_and_channel", prefix, copies, true);
-  if (fs::exists(in_dir + "/vad.scp"))
-    copy_renamed_table(in_dir + "/vad.scp", out.path() + "/vad.scp", prefix, copies, false);
+}
 
-  std::vector<std::string> problems = validate_data_dir(out.path(), !input.text.empty());
+// Writes the data dir into `out_dir` (the staging dir) and checks it as validate_data_dir.sh would.
+void write_checked_data_dir(const std::string& in_dir, const std::string& out_dir, const DataDir& output,
+                            const std::string& prefix, const std::vector<int>& copies, bool has_text) {
+  write_data_dir(out_dir, output);
+  if (fs::exists(in_dir + "/reco2file_and_channel"))
+    copy_renamed_table(in_dir + "/reco2file_and_channel", out_dir + "/reco2file_and_channel", prefix, copies, true);
+  if (fs::exists(in_dir + "/vad.scp"))
+    copy_renamed_table(in_dir + "/vad.scp", out_dir + "/vad.scp", prefix, copies, false);
+  std::vector<std::string> problems = validate_data_dir(out_dir, has_text);
   if (!problems.empty()) {
     std::string message = "the output data dir failed validation:";
     for (const std::string& p : problems) message += "\n  " + p;
     throw Error(message);
   }
+}
+
+}  // namespace
+
+ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std::string& out_dir,
+                                            const ReverberateDataOptions& options) {
+  if (absolute_path(in_dir) == absolute_path(out_dir)) throw Error("input and output data dirs are the same");
+  const ReverberatePlan plan = to_plan(options, OptionSpelling::kCommandLine);
+  const DataDir input = read_data_dir(in_dir);
+  if (input.wav_scp.empty()) throw Error(in_dir + "/wav.scp: no recordings");
+  const std::vector<RecordingPlan> plans = plan_copies(in_dir, input, plan, options.num_threads);
+  const auto& [first_id, first_rx] = *input.wav_scp.begin();
+  const DirSampleRate dir_rate(plan.sample_rate_hz, first_id, first_rx, in_dir + "/wav.scp: recording '" + first_id + "'");
+
+  // Every input, so that no output lands on one (io/owned_output.h).
+  InputLedger& inputs = *run_inputs();
+  inputs.add(in_dir);
+  for (const auto& [id, rx] : input.wav_scp) inputs.add(rx);
+  for (const RirChoice& r : plan.sources.rirs) inputs.add(r.rxfilename);
+  for (const NoiseChoice& n : plan.sources.noises) inputs.add(n.rxfilename);
+  OwnedOutputDir out(out_dir);
+  DataDir output;
+  std::unique_ptr<OwnedOutputDir> wav_dir;
+  if (options.write_wavs.empty()) {
+    output.wav_scp = pipe_wav_scp(plans, plan, in_dir, input, dir_rate, options);
+  } else {
+    if (path_is_inside(out_dir, absolute_path(options.write_wavs)))
+      throw Error("--write-wavs directory " + options.write_wavs + " must not contain the output data dir");
+    // The wavs belong to this data dir: another data dir's wavs in a shared --write-wavs directory
+    // are never replaced (it would point at different audio) unless --overwrite.
+    wav_dir = std::make_unique<OwnedOutputDir>(options.write_wavs, out_dir);
+    output.wav_scp = write_wavs(plans, plan, in_dir, options, dir_rate, *wav_dir);
+  }
+
+  std::vector<int> copies;
+  for (int c = options.include_original_data ? 0 : 1; c <= options.num_replications; ++c) copies.push_back(c);
+  const std::string& prefix = plan.planning.prefix;
+  copy_utterance_tables(input, prefix, copies, &output);
+  // Shifted outputs keep the input's length, so its durations carry over to the new ids.
+  if (options.reverb.shift_output) {
+    for (const RecordingPlan& recording : plans) output.reco2dur[recording.new_id] = recording.duration_s;
+  }
+  write_checked_data_dir(in_dir, out.path(), output, prefix, copies, !input.text.empty());
   if (wav_dir) wav_dir->commit();
   out.commit();
+
+  ReverberateDataSummary summary;
+  for (const RecordingPlan& recording : plans) {
+    summary.reverberated += recording.rir >= 0;
+    summary.with_noise += !recording.noises.empty();
+  }
   summary.recordings = output.wav_scp.size();
   summary.utterances = output.utt2spk.size();
   log_info(out_dir + ": " + std::to_string(summary.recordings) + " recordings (" + std::to_string(summary.reverberated) +

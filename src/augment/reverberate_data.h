@@ -5,11 +5,24 @@
 #include <string>
 #include <vector>
 
+#include "augment/augment_plan.h"
 #include "augment/reverberate.h"
 #include "augment/speech_input.h"
 #include "util/options.h"
 
 namespace tsrir {
+
+// --noise-start: zero (Kaldi: background noises extended from their start) or random (extension:
+// from a random offset, looped over the whole recording).
+enum class NoiseStart { kZero, kRandom };
+const Choices<NoiseStart>& noise_start_choices();
+// --point-source-noise-rir: same-room (Kaldi: point sources convolved with an RIR of the
+// recording's room) or none (extension).
+enum class PointSourceNoiseRir { kSameRoom, kNone };
+const Choices<PointSourceNoiseRir>& point_source_noise_rir_choices();
+// --pipe-dialect: may the pipes use tsrir's wav-reverberate options? auto (only when the pipe
+// program is ours), tsrir, or kaldi.
+enum class PipeDialect { kAuto, kTsrir, kKaldi };
 
 struct ReverberateDataOptions {
   std::vector<std::string> rir_set_parameters;     // "[weight,] rir_list"
@@ -23,15 +36,15 @@ struct ReverberateDataOptions {
   double pointsource_noise_addition_probability = 1.0;
   int max_noises_per_minute = 2;
   int max_noises_per_recording = 0;                // extension: > 0 replaces the per-minute cap
-  std::string noise_start = "zero";                // zero (Kaldi) | random (extension: offset, looped)
-  std::string point_source_noise_rir = "same-room";  // same-room (Kaldi) | none (extension)
-  std::string pipe_dialect = "auto";               // auto | tsrir | kaldi: may pipes use our extensions?
+  NoiseStart noise_start = NoiseStart::kZero;
+  PointSourceNoiseRir point_source_noise_rir = PointSourceNoiseRir::kSameRoom;
+  PipeDialect pipe_dialect = PipeDialect::kAuto;
   // --shift-output, --normalize-output, --snr-reference: the per-recording output rules, as the
   // pipes' wav-reverberate (or --write-wavs) applies them.
   ReverbOptions reverb;
   bool include_original_data = false;
   Seed random_seed = 0;
-  double source_sampling_rate_hz = 0.0;            // > 0: speech must have this rate
+  double source_sampling_rate_hz = 0.0;            // --sample-rate: > 0 the data dir's rate (rate_policy.h)
   double rir_smoothing_weight = 0.3;
   double noise_smoothing_weight = 0.3;
   std::string write_wavs;                          // "" = pipes in wav.scp
@@ -45,6 +58,28 @@ struct ReverberateDataOptions {
   // extensions (--random-seed also as --seed, the toolkit's name).
   void Register(OptionsItf* opts);
 };
+
+// How errors spell an option: as the program's command line ("--speech-rvb-probability") or as
+// the Python Augmenter's keyword ("speech_rvb_probability").
+enum class OptionSpelling { kCommandLine, kPython };
+std::string spelled(const std::string& option, OptionSpelling spelling);
+
+// What reverberate-data's options decide, checked: the RIRs and noises to draw from, the SNR lists,
+// the planner's options (copies, ids, probabilities, noise rules, seed) and the per-recording
+// output rules. The program and the Python Augmenter both make theirs with to_plan(), so an option
+// means the same in both.
+struct ReverberatePlan {
+  AugmentSources sources;
+  SnrSpec foreground_snrs, background_snrs;
+  PlanOptions planning;
+  ReverbOptions reverb;
+  // --sample-rate: the data dir's rate when > 0, else (0) its first recording's; a recording at
+  // another rate is resampled only when it was given (DirSampleRate, rate_policy.h).
+  double sample_rate_hz = 0.0;
+};
+// Errors name the options as `spelling` writes them. Loads the RIR and noise lists (errors name
+// their files and lines). With several copies and no --prefix, the prefix is Kaldi's "rvb".
+ReverberatePlan to_plan(const ReverberateDataOptions& options, OptionSpelling spelling);
 
 struct ReverberateDataSummary {
   size_t recordings = 0;     // output wav.scp entries

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "io/common_options.h"
 #include "util/error.h"
 
 namespace tsrir::diagnose {
@@ -10,9 +11,9 @@ void DiagnoseOptions::Register(OptionsItf* opts) {
   opts->Register("sample-rate", &sample_rate_hz, "analysis sample rate, Hz (measured RIRs are resampled)");
   opts->RegisterAlias("fs", "sample-rate");
   opts->Register("model", &baseline_model, "baseline model (rir-simulate --model syntax)");
-  opts->Register("seed", &seed, "seed of the simulations (seed, seed+1 for the null calibration, seed+2 for evaluation)");
-  opts->RegisterAlias("random-seed", "seed");
-  opts->Register("num-threads", &num_threads, "threads");
+  CommonOptions(opts)
+      .seed(&seed, "the simulations (seed, seed+1 for the null calibration, seed+2 for evaluation)")
+      .threads(&num_threads, "simulations and fits run in parallel");
 }
 
 void DiagnoseOptions::Validate() const {

@@ -13,7 +13,7 @@ MeasuredSet load_measured_set(const std::string& room_list, const std::string& r
   set.rooms = sim::read_room_list(room_list);
   std::set<std::string> ids;
   for (const sim::RoomSpec& r : set.rooms) ids.insert(r.rir_id);
-  const std::vector<RirRef> refs = read_rir_refs(rir_scp);
+  const std::vector<RirRef> refs = read_rir_refs(rir_scp, run_inputs());
   // All ids first: a list whose last id is unknown fails before reading thousands of WAVs.
   for (const RirRef& ref : refs) {
     if (!ids.count(ref.id)) {

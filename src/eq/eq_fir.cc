@@ -11,21 +11,15 @@
 
 namespace tsrir {
 
-FirWindow parse_fir_window(const std::string& name) {
-  if (name == "hamming") return FirWindow::kHamming;
-  if (name == "hann") return FirWindow::kHann;
-  if (name == "blackman") return FirWindow::kBlackman;
-  throw Error("unknown FIR window '" + name + "' (expected hamming, hann or blackman)");
+const Choices<FirWindow>& fir_window_choices() {
+  static const Choices<FirWindow> choices = {
+      {"hamming", FirWindow::kHamming}, {"hann", FirWindow::kHann}, {"blackman", FirWindow::kBlackman}};
+  return choices;
 }
 
-std::string fir_window_name(FirWindow window) {
-  switch (window) {
-    case FirWindow::kHamming: return "hamming";
-    case FirWindow::kHann: return "hann";
-    case FirWindow::kBlackman: return "blackman";
-  }
-  return "hamming";
-}
+FirWindow parse_fir_window(const std::string& name) { return parse_choice(fir_window_choices(), name, "FIR window"); }
+
+std::string fir_window_name(FirWindow window) { return choice_name(fir_window_choices(), window); }
 
 EqCurvePosition eq_curve_position(double freq_hz) {
   const double lo = kEqNodesHz.front(), hi = kEqNodesHz.back();

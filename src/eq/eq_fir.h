@@ -21,13 +21,15 @@
 #include <vector>
 
 #include "eq/relative_gain.h"
+#include "util/options.h"
 
 namespace tsrir {
 
 using EqNodeGainsDb = std::array<double, kEqNumNodes>;
 
 enum class FirWindow { kHamming, kHann, kBlackman };
-FirWindow parse_fir_window(const std::string& name);  // "hamming" | "hann" | "blackman"
+const Choices<FirWindow>& fir_window_choices();      // "hamming" | "hann" | "blackman"
+FirWindow parse_fir_window(const std::string& name);
 std::string fir_window_name(FirWindow window);
 
 struct EqFirOptions {

@@ -1,13 +1,13 @@
 #include "eq/eq_options.h"
 
+#include "io/common_options.h"
 #include "util/error.h"
 
 namespace tsrir {
 namespace {
 
 void register_measure(RirEqOptions* o, OptionsItf* opts, bool fitting) {
-  opts->RegisterEnum("gain-method", &o->gain_method,
-                     {{"octave", GainMethod::kOctave}, {"smooth", GainMethod::kSmooth}, {"bin", GainMethod::kBin}},
+  opts->RegisterEnum("gain-method", &o->gain_method, gain_method_choices(),
                      "How a gain is read off the spectrum: octave (mean power over the octave band, clipped at "
                      "Nyquist: 8 kHz at fs=16 kHz is [5657, 8000] Hz), smooth (1/3 octave) or bin (nearest bin)");
   opts->Register("sample-rate", &o->sample_rate_hz,
@@ -21,25 +21,21 @@ void register_fit(RirEqOptions* o, OptionsItf* opts) {
                      "indep: an independent Gaussian per point (the paper's reading); gmm: Gaussian mixture over the "
                      "7-D gain vectors (EM)");
   opts->Register("components", &o->components, "Mixture components (--model=gmm)");
-  opts->RegisterEnum("covariance", &o->covariance, {{"diag", CovarianceType::kDiagonal}, {"full", CovarianceType::kFull}},
-                     "Mixture covariance (--model=gmm)");
+  opts->RegisterEnum("covariance", &o->covariance, covariance_type_choices(), "Mixture covariance (--model=gmm)");
   opts->Register("em-restarts", &o->em_restarts, "EM runs from different seeds; the best likelihood wins");
 }
 
 void register_apply(RirEqOptions* o, OptionsItf* opts) {
   opts->Register("taps", &o->eq.fir.taps,
                  "EQ FIR length, odd (type I linear phase); 0 = 2049 at 16 kHz scaled with the rate (128 ms)");
-  opts->RegisterEnum("window", &o->eq.fir.window,
-                     {{"hamming", FirWindow::kHamming}, {"hann", FirWindow::kHann}, {"blackman", FirWindow::kBlackman}},
-                     "FIR design window");
+  opts->RegisterEnum("window", &o->eq.fir.window, fir_window_choices(), "FIR design window");
   opts->Register("refine-iterations", &o->eq.refine_iterations,
                  "Newton refinements of the node gains so the filtered RIR's gains hit the target (0 = one design)");
   opts->Register("max-boost-db", &o->eq.max_boost_db, "Largest boost of any EQ node (dB); boosts raise noise");
   opts->Register("max-cut-db", &o->eq.max_cut_db, "Largest cut of any EQ node (dB)");
-  opts->RegisterEnum("level", &o->eq.level, {{"peak", EqLevel::kPeak}, {"energy", EqLevel::kEnergy}, {"none", EqLevel::kNone}},
+  opts->RegisterEnum("level", &o->eq.level, eq_level_choices(),
                      "Output level: peak (keep max |x|), energy (keep sum x^2) or none");
-  opts->RegisterEnum("format", &o->format, {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}},
-                     "Output wav samples");
+  CommonOptions(opts).audio_format(&o->format);
   opts->Register("resample", &o->resample, "Resample inputs whose rate differs from the model's (else an error)");
   opts->Register("report", &o->report, "Write per-RIR gains (before, target, achieved) to this file");
 }
@@ -51,11 +47,11 @@ void RirEqOptions::Register(OptionsItf* opts, EqProgramMode mode) {
     case EqProgramMode::kFit:
       register_measure(this, opts, true);
       register_fit(this, opts);
-      opts->Register("seed", &seed, "Seed of the EM initialisation (--model=gmm)");
+      CommonOptions(opts).seed(&seed, "the EM initialisation (--model=gmm)");
       break;
     case EqProgramMode::kApply:
       register_apply(this, opts);
-      opts->Register("seed", &seed, "Seed of the target-gain draws (one stream per RIR id)");
+      CommonOptions(opts).seed(&seed, "the target-gain draws (one stream per RIR id)");
       break;
     case EqProgramMode::kGains:
       register_measure(this, opts, false);
@@ -66,11 +62,10 @@ void RirEqOptions::Register(OptionsItf* opts, EqProgramMode mode) {
       register_measure(this, opts, true);
       register_fit(this, opts);
       register_apply(this, opts);
-      opts->Register("seed", &seed, "Seed of the EM initialisation and of the target-gain draws");
+      CommonOptions(opts).seed(&seed, "the EM initialisation and of the target-gain draws");
       break;
   }
-  if (mode != EqProgramMode::kGains) opts->RegisterAlias("random-seed", "seed");
-  opts->Register("num-threads", &num_threads, "Threads");
+  CommonOptions(opts).threads(&num_threads, "RIRs are processed in parallel");
 }
 
 MeasureSetOptions RirEqOptions::measure_options() const {

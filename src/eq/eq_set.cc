@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "io/atomic_output.h"
+#include "io/owned_output.h"
 #include "io/rir_set.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -119,7 +120,7 @@ class Progress {
 
 std::vector<RirGains> measure_rir_set(const std::string& set_path, const MeasureSetOptions& options, double* rate_hz) {
   if (options.sample_rate_hz > 0) check_eq_sample_rate(options.sample_rate_hz, "--sample-rate");
-  const std::vector<RirRef> refs = read_rir_refs(set_path);
+  const std::vector<RirRef> refs = read_rir_refs(set_path, run_inputs());
   if (refs.empty()) throw Error(set_path + ": no RIRs listed");
   RateGuard guard(options.sample_rate_hz);
   std::vector<RirGains> out(refs.size());
@@ -167,7 +168,7 @@ EqModel fit_eq_model_on_set(const std::string& real_set_path, const FitSetOption
 ApplySetSummary equalize_rir_set(const EqModel& model, const std::string& in_set_path, const std::string& out_dir,
                                  const ApplySetOptions& options) {
   model.mixture.validate("EQ model");
-  const std::vector<RirRef> refs = read_rir_refs(in_set_path);
+  const std::vector<RirRef> refs = read_rir_refs(in_set_path, run_inputs());
   if (refs.empty()) throw Error(in_set_path + ": no RIRs listed");
   EqApplyOptions eq = options.eq;
   eq.gain_method = model.gain_method;

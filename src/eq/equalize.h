@@ -28,7 +28,8 @@ enum class EqLevel {
   kEnergy,  // sum y^2 = sum x^2
   kNone,    // the filter's own gain (0 dB at 1 kHz)
 };
-EqLevel parse_eq_level(const std::string& name);  // "peak" | "energy" | "none"
+const Choices<EqLevel>& eq_level_choices();      // "peak" | "energy" | "none"
+EqLevel parse_eq_level(const std::string& name);
 std::string eq_level_name(EqLevel level);
 
 struct EqApplyOptions {

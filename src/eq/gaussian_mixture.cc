@@ -9,15 +9,16 @@
 
 namespace tsrir {
 
-CovarianceType parse_covariance_type(const std::string& name) {
-  if (name == "diag") return CovarianceType::kDiagonal;
-  if (name == "full") return CovarianceType::kFull;
-  throw Error("unknown covariance type '" + name + "' (expected diag or full)");
+const Choices<CovarianceType>& covariance_type_choices() {
+  static const Choices<CovarianceType> choices = {{"diag", CovarianceType::kDiagonal}, {"full", CovarianceType::kFull}};
+  return choices;
 }
 
-std::string covariance_type_name(CovarianceType type) {
-  return type == CovarianceType::kFull ? "full" : "diag";
+CovarianceType parse_covariance_type(const std::string& name) {
+  return parse_choice(covariance_type_choices(), name, "covariance type");
 }
+
+std::string covariance_type_name(CovarianceType type) { return choice_name(covariance_type_choices(), type); }
 
 long GaussianMixture::num_parameters(int k, int d, CovarianceType type) {
   const long cov = type == CovarianceType::kFull ? static_cast<long>(d) * (d + 1) / 2 : d;

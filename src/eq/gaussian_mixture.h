@@ -6,12 +6,14 @@
 #include <string>
 #include <vector>
 
+#include "util/options.h"
 #include "util/rng.h"
 
 namespace tsrir {
 
 enum class CovarianceType { kDiagonal, kFull };
-CovarianceType parse_covariance_type(const std::string& name);  // "diag" | "full"
+const Choices<CovarianceType>& covariance_type_choices();  // "diag" | "full"
+CovarianceType parse_covariance_type(const std::string& name);
 std::string covariance_type_name(CovarianceType type);
 
 struct GaussianComponent {

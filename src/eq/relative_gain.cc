@@ -9,21 +9,17 @@
 
 namespace tsrir {
 
-GainMethod parse_gain_method(const std::string& name) {
-  if (name == "octave") return GainMethod::kOctave;
-  if (name == "smooth") return GainMethod::kSmooth;
-  if (name == "bin") return GainMethod::kBin;
-  throw Error("unknown gain method '" + name + "' (expected octave, smooth or bin)");
+const Choices<GainMethod>& gain_method_choices() {
+  static const Choices<GainMethod> choices = {
+      {"octave", GainMethod::kOctave}, {"smooth", GainMethod::kSmooth}, {"bin", GainMethod::kBin}};
+  return choices;
 }
 
-std::string gain_method_name(GainMethod method) {
-  switch (method) {
-    case GainMethod::kOctave: return "octave";
-    case GainMethod::kSmooth: return "smooth";
-    case GainMethod::kBin: return "bin";
-  }
-  return "octave";
+GainMethod parse_gain_method(const std::string& name) {
+  return parse_choice(gain_method_choices(), name, "gain method");
 }
+
+std::string gain_method_name(GainMethod method) { return choice_name(gain_method_choices(), method); }
 
 size_t eq_fft_size(size_t num_samples) {
   size_t n = 16384;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/signal.h"
+#include "util/options.h"
 
 namespace tsrir {
 
@@ -31,7 +32,8 @@ inline int eq_node_of_point(int k) { return k < kEqReferenceNode ? k : k + 1; }
 using RelativeGainsDb = std::array<double, kEqNumPoints>;
 
 enum class GainMethod { kOctave, kSmooth, kBin };
-GainMethod parse_gain_method(const std::string& name);   // "octave" | "smooth" | "bin"
+const Choices<GainMethod>& gain_method_choices();        // "octave" | "smooth" | "bin"
+GainMethod parse_gain_method(const std::string& name);
 std::string gain_method_name(GainMethod method);
 
 // Lowest sample rate the EQ accepts (the 8000 Hz point must not lie above Nyquist).

@@ -7,6 +7,7 @@
 
 #include "gan/compute_device.h"
 #include "gan/ts_rirgan.h"
+#include "io/common_options.h"
 #include "util/error.h"
 #include "util/options.h"
 #include "util/strings.h"
@@ -62,7 +63,7 @@ void GanSettings::Register(OptionsItf* opts) {
                   "Generator up path: original (16w,8w,4w channels: the original's code) or light "
                   "(4w,2w,w: its code comments; 41.4 M instead of 66.6 M parameters at width 64, 1/3 of the FLOPs)");
   opts->Register("batch-size", &batch_size, "RIRs per batch (the paper's is 64)");
-  opts->Register("seed", &seed, "Random seed (initialisation and batch order)");
+  CommonOptions(opts).seed(&seed, "the initialisation and batch order");
   opts->Register("learning-rate", &learning_rate, "Generators' RMSProp learning rate (the paper's: 3e-5)");
   opts->Register("disc-learning-rate", &disc_learning_rate,
                  "Discriminators' RMSProp learning rate (0 = --learning-rate, the paper)");
@@ -98,7 +99,7 @@ void GanTrainOptions::Register(OptionsItf* opts) {
   opts->Register("steps", &steps,
                  "Total training iterations (each: --disc-updates x (D_R, D_S) updates and the generator update)");
   model.Register(opts);
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch (OpenBLAS is kept at 1)");
+  CommonOptions(opts).threads(&num_threads, "LibTorch's CPU threads (OpenBLAS is kept at 1)");
   opts->Register("checkpoint-every", &checkpoint_every, "Write checkpoint.pt every N steps");
   opts->Register("resume", &resume, "Continue from <model-dir>/checkpoint.pt (same settings required)");
   register_compute_device(opts, &device);
@@ -122,10 +123,9 @@ void GanTranslateOptions::Register(OptionsItf* opts) {
   };
   opts->RegisterSpec(std::move(length));
   opts->Register("restore-level", &restore_level, "Scale each output by its input's peak |x|");
-  opts->RegisterEnum("format", &format, {{"float", SampleFormat::kFloat32}, {"int16", SampleFormat::kInt16}},
-                     "Output sample format");
+  CommonOptions(opts).audio_format(&format);
   register_compute_device(opts, &device);
-  opts->Register("num-threads", &num_threads, "CPU threads for LibTorch and reading");
+  CommonOptions(opts).threads(&num_threads, "LibTorch's CPU threads and reading");
   register_choice(opts, "precision", &precision, {"float32", "bfloat16"},
                   "bfloat16: faster on CPUs with AVX512-BF16/AMX (slower without), output within ~1% RMS "
                   "of float32 (bench/RESULTS.md)");

@@ -46,7 +46,7 @@ const char* const kLogHeader =
 // All RIRs of one domain as a [N, 1, 16384] CPU tensor.
 torch::Tensor load_domain(const std::string& list, const std::string& name, int batch_size,
                           int num_threads) {
-  const std::vector<RirRef> refs = read_rir_refs(list);
+  const std::vector<RirRef> refs = read_rir_refs(list, run_inputs());
   if (refs.empty()) throw Error(list + ": the " + name + " set is empty");
   if (refs.size() < size_t(batch_size)) {
     throw Error(list + ": the " + name + " set has " + std::to_string(refs.size()) +

@@ -50,7 +50,7 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   if (fs::is_directory(o.model)) checkpoint = (fs::path(o.model) / "checkpoint.pt").string();
   if (!fs::exists(checkpoint)) throw Error("no TS-RIRGAN checkpoint at " + checkpoint);
   // Read the input list first: a bad list should fail before a slow model load.
-  const std::vector<RirRef> refs = read_rir_refs(o.input_list);
+  const std::vector<RirRef> refs = read_rir_refs(o.input_list, run_inputs());
   if (refs.empty()) throw Error(o.input_list + ": no RIRs to translate");
 
   using Clock = std::chrono::steady_clock;

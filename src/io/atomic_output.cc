@@ -45,7 +45,7 @@ AtomicTextFile::AtomicTextFile(const std::string& final_path) : final_path_(fina
     to_stdout_ = true;
     return;
   }
-  check_file_not_input(final_path);
+  run_inputs()->check_output_file(final_path);
   temp_path_ = make_temp_path(final_path);
   file_.open(temp_path_, std::ios::out | std::ios::trunc | std::ios::binary);
   if (!file_) {

@@ -163,6 +163,12 @@ RirListEntry parse_rir_list_line(const std::string& line, const std::string& con
   return e;
 }
 
+const Choices<BgFgType>& bg_fg_type_choices() {
+  static const Choices<BgFgType> choices = {{"background", BgFgType::kBackground},
+                                            {"foreground", BgFgType::kForeground}};
+  return choices;
+}
+
 NoiseListEntry parse_noise_list_line(const std::string& line, const std::string& context) {
   static const std::set<std::string> known = {"noise-id", "noise-type", "bg-fg-type", "room-linkage", "probability"};
   ParsedLine p = parse_option_line(line, known, context);
@@ -172,9 +178,13 @@ NoiseListEntry parse_noise_list_line(const std::string& line, const std::string&
   if (e.noise_type != "isotropic" && e.noise_type != "point-source") {
     throw Error(context + ": --noise-type must be isotropic or point-source, got '" + e.noise_type + "'");
   }
-  if (p.options.count("bg-fg-type")) e.bg_fg_type = p.options.at("bg-fg-type");
-  if (e.bg_fg_type != "background" && e.bg_fg_type != "foreground") {
-    throw Error(context + ": --bg-fg-type must be background or foreground, got '" + e.bg_fg_type + "'");
+  if (p.options.count("bg-fg-type")) {
+    const std::string& type = p.options.at("bg-fg-type");
+    try {
+      e.bg_fg_type = choice_value(bg_fg_type_choices(), type);
+    } catch (const Error&) {
+      throw Error(context + ": --bg-fg-type must be background or foreground, got '" + type + "'");
+    }
   }
   e.room_linkage = optional_str(p, "room-linkage");
   if (e.noise_type == "isotropic" && e.room_linkage.empty()) {

@@ -5,7 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "util/options.h"
+
 namespace tsrir {
+
+// A point-source noise's --bg-fg-type: background (extended over the recording from its start) or
+// foreground (added once at a random time).
+enum class BgFgType { kBackground, kForeground };
+const Choices<BgFgType>& bg_fg_type_choices();  // "background" | "foreground"
 
 struct RirListEntry {
   std::string rir_id;
@@ -20,7 +27,7 @@ struct RirListEntry {
 struct NoiseListEntry {
   std::string noise_id;
   std::string noise_type;        // "isotropic" | "point-source"
-  std::string bg_fg_type = "background";
+  BgFgType bg_fg_type = BgFgType::kBackground;
   std::string room_linkage;      // required for isotropic
   std::optional<double> probability;
   std::string rxfilename;

@@ -19,8 +19,9 @@
 #include <sstream>
 
 #include "io/atomic_output.h"
-#include "util/cli.h"
+#include "io/common_options.h"
 #include "util/error.h"
+#include "util/log.h"
 #include "util/strings.h"
 #include "util/remove_tree.h"
 
@@ -33,91 +34,6 @@ const char* const kOwnedMarkerName = ".tsrir-owned";
 namespace {
 
 const std::string kStagingPrefix = ".tsrir-staging";
-
-// ---- inputs ---------------------------------------------------------------------------------
-
-struct ResolvedInput {
-  std::string shown;  // as the user gave it
-  std::string real;   // real path
-  bool is_dir = false;
-};
-
-struct InputRegistry {
-  std::mutex mutex;
-  std::vector<std::string> pending;
-  std::vector<ResolvedInput> resolved;
-  std::set<std::string> seen;
-  std::map<std::string, std::string> real_parent;  // parent dir -> its real path
-};
-
-InputRegistry& inputs() {
-  static InputRegistry r;
-  return r;
-}
-
-std::string real_parent_of(InputRegistry& r, const fs::path& p) {
-  const std::string parent = fs::absolute(p).parent_path().string();
-  auto it = r.real_parent.find(parent);
-  if (it != r.real_parent.end()) return it->second;
-  std::error_code ec;
-  std::string real = fs::weakly_canonical(parent, ec).string();
-  if (ec) real = fs::absolute(parent).lexically_normal().string();
-  r.real_parent[parent] = real;
-  return real;
-}
-
-// Resolves one existing path: where it is (its directory's real path + its name) and, for a
-// symlink, what it points at; both must stay out of every output.
-void resolve_path(InputRegistry& r, const std::string& path) {
-  std::error_code ec;
-  const fs::file_status link_status = fs::symlink_status(path, ec);
-  if (ec || !fs::exists(link_status)) return;
-  const fs::path p(path);
-  std::string name = p.filename().string();
-  if (name.empty() || name == "." || name == "..") {
-    const std::string real = fs::weakly_canonical(fs::absolute(p), ec).string();
-    if (!ec && r.seen.insert(real).second) r.resolved.push_back({path, real, fs::is_directory(real)});
-    return;
-  }
-  const std::string where = (fs::path(real_parent_of(r, p)) / name).string();
-  const bool is_dir = fs::is_directory(path, ec);
-  if (r.seen.insert(where).second) r.resolved.push_back({path, where, is_dir});
-  if (fs::is_symlink(link_status)) {
-    const std::string target = fs::canonical(path, ec).string();
-    if (!ec && r.seen.insert(target).second) r.resolved.push_back({path, target, is_dir});
-  }
-}
-
-void resolve_rx(InputRegistry& r, const std::string& rx) {
-  const std::string t = trim(rx);
-  if (t.empty() || t == "-") return;
-  if (t.back() != '|') {
-    // Kaldi's "file:offset" and "ark:" forms name a file too.
-    resolve_path(r, t);
-    const size_t colon = t.rfind(':');
-    if (colon != std::string::npos && colon > 0 && !fs::exists(t)) resolve_path(r, t.substr(0, colon));
-    return;
-  }
-  // A pipe: its arguments that are existing files ("sox in.wav -t wav - |", "cat a.wav |").
-  for (const std::string& token : split_whitespace(t.substr(0, t.size() - 1))) {
-    if (token.empty() || token[0] == '-' || token == "|") continue;
-    std::error_code ec;
-    if (fs::is_regular_file(token, ec)) resolve_path(r, token);
-  }
-}
-
-bool is_under(const std::string& path, const std::string& dir) {
-  if (dir == "/") return path.size() > 1 && path[0] == '/';
-  return path.size() > dir.size() && path.compare(0, dir.size(), dir) == 0 && path[dir.size()] == '/';
-}
-
-std::string real_output_path(const std::string& dir) {
-  std::error_code ec;
-  std::string real = fs::weakly_canonical(fs::absolute(dir), ec).string();
-  if (ec) real = fs::absolute(dir).lexically_normal().string();
-  while (real.size() > 1 && real.back() == '/') real.pop_back();
-  return real;
-}
 
 // ---- the marker -----------------------------------------------------------------------------
 
@@ -227,7 +143,7 @@ std::string way_out(const std::string& dir) {
 
 // The checks every claim makes: an input, a file in the way, a directory that is not ours.
 void check_claim(const std::string& dir) {
-  check_output_not_input(dir);
+  run_inputs()->check_output_dir(dir);
   std::error_code ec;
   const fs::file_status st = fs::status(dir, ec);
   if (!fs::exists(st)) return;
@@ -314,83 +230,22 @@ class BlockSignals {
 
 }  // namespace
 
-OutputPolicy& output_policy() {
+namespace {
+OutputPolicy& installed_policy() {
   static OutputPolicy policy;
   return policy;
 }
+}  // namespace
 
-void register_output_options(CommandLine* cli) {
-  // The program, not its sub-command: "rir-eq apply" and "rir-eq" write the same outputs.
-  const std::string& name = cli->program();
-  output_policy().program = name.substr(0, name.find(' '));
-  cli->flag("overwrite", &output_policy().overwrite,
-            "write into an output directory that tsrir did not write (or replace files another run "
-            "wrote there); only files of the names this program writes are replaced, nothing is deleted");
-}
+OutputPolicy::OutputPolicy(const std::string& program_name) : program(program_name.substr(0, program_name.find(' '))) {}
 
-void note_input(const std::string& rx) {
-  InputRegistry& r = inputs();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  r.pending.push_back(rx);
-}
+void OutputPolicy::Register(OptionsItf* opts) { CommonOptions(opts).overwrite(&overwrite); }
 
-void note_inputs(const std::vector<std::string>& rxs) {
-  InputRegistry& r = inputs();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  r.pending.insert(r.pending.end(), rxs.begin(), rxs.end());
-}
+const OutputPolicy& output_policy() { return installed_policy(); }
 
-void clear_noted_inputs() {
-  InputRegistry& r = inputs();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  r.pending.clear();
-  r.resolved.clear();
-  r.seen.clear();
-  r.real_parent.clear();
-}
+void install_output_policy(const OutputPolicy& policy) { installed_policy() = policy; }
 
-void check_output_not_input(const std::string& output_dir) {
-  InputRegistry& r = inputs();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  for (const std::string& rx : r.pending) resolve_rx(r, rx);
-  r.pending.clear();
-  const std::string out = real_output_path(output_dir);
-  for (const ResolvedInput& in : r.resolved) {
-    std::string why;
-    if (in.real == out) {
-      why = "is the input";
-    } else if (is_under(in.real, out)) {
-      why = "contains the input";
-    } else if (in.is_dir && is_under(out, in.real)) {
-      why = "lies inside the input directory";
-    } else {
-      continue;
-    }
-    throw Error("output directory " + output_dir + " " + why + " " + in.shown +
-                (in.real != in.shown ? " (real path " + in.real + ")" : "") +
-                ": a program never writes where its inputs are; choose an output directory outside every input");
-  }
-}
-
-void check_file_not_input(const std::string& path) {
-  if (path.empty() || path == "-" || path.find("/" + kStagingPrefix + ".tmp.") != std::string::npos) return;
-  InputRegistry& r = inputs();
-  std::lock_guard<std::mutex> lock(r.mutex);
-  for (const std::string& rx : r.pending) resolve_rx(r, rx);
-  r.pending.clear();
-  if (r.seen.empty()) return;
-  const fs::path p(path);
-  std::string real = (fs::path(real_parent_of(r, p)) / p.filename()).string();
-  std::error_code ec;
-  if (!r.seen.count(real) && fs::is_symlink(fs::symlink_status(path, ec))) {
-    const std::string target = fs::canonical(path, ec).string();
-    if (!ec) real = target;
-  }
-  if (r.seen.count(real)) {
-    throw Error("output file " + path + " is an input of this run (real path " + real +
-                "): a program never writes over its inputs; choose another output name");
-  }
-}
+InputLedger* run_inputs() { return installed_policy().inputs.get(); }
 
 OwnedOutputDir::OwnedOutputDir(const std::string& final_dir, const std::string& owner)
     : final_dir_(final_dir), owner_(owner_key(owner)) {
@@ -440,7 +295,7 @@ void OwnedOutputDir::commit() {
   const std::string program = output_policy().program;
 
   DirLock lock(final_dir_);
-  check_output_not_input(final_dir_);
+  run_inputs()->check_output_dir(final_dir_);
   Marker marker;
   read_marker(final_dir_, &marker);
   for (const std::string& n : names) check_name(final_dir_, marker, n, owner_);

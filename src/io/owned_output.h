@@ -8,41 +8,48 @@
 //    unless the user says --overwrite -- and even then it replaces only files of its own names;
 //  - it never deletes a file it did not write: a re-run removes only the files its own previous run
 //    listed and that are unchanged since (same size and time), and that it no longer writes;
-//  - it refuses an output directory that is, contains or lies inside any input (real paths, through
-//    symlinks, including every file a list or wav.scp points at, pipes' file arguments included);
+//  - it refuses an output directory that is, contains or lies inside any input of the run (its
+//    InputLedger: real paths, through symlinks, including every file a list or wav.scp points at,
+//    pipes' file arguments included);
 //  - files are written into a staging directory (.tsrir-staging.tmp.<pid>.<n>) inside the output
 //    and renamed to their final names at commit, under an exclusive lock on the directory (two runs
 //    sharing a directory see each other's files); a failed run leaves no staging directory and
 //    removes directories it created that stayed empty.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "io/input_ledger.h"
+
 namespace tsrir {
 
-class CommandLine;
+class OptionsItf;
 
-// Process-wide output policy, set from the command line of each program.
+// Who writes, whether --overwrite was given, and what the run has read: the policy every owned
+// output and atomic file of the process follows. A program's main makes one from its command line
+// and installs it after parsing:
+//   OutputPolicy policy(cli.program());  policy.Register(&cli);  cli.parse(...);
+//   install_output_policy(policy);
+// then hands run_inputs() to the readers of its inputs.
 struct OutputPolicy {
-  bool overwrite = false;      // --overwrite: may write into a directory it does not own
-  std::string program = "tsrir";
+  std::string program = "tsrir";  // recorded in the marker as each file's writer
+  bool overwrite = false;         // --overwrite: may write into a directory it does not own
+  // What the run has read: every owned output is checked against it at creation and at commit,
+  // every atomic file (AtomicTextFile, write_wav) when it is opened. Copies share it.
+  std::shared_ptr<InputLedger> inputs = std::make_shared<InputLedger>();
+
+  OutputPolicy() = default;
+  // The program, not its sub-command: "rir-eq apply" and "rir-eq" write the same outputs.
+  explicit OutputPolicy(const std::string& program_name);
+  void Register(OptionsItf* opts);  // --overwrite (io/common_options.h)
 };
-OutputPolicy& output_policy();
-// Registers --overwrite and records the program's name (call once in each program's main).
-void register_output_options(CommandLine* cli);
-
-// Records an input: a path, a directory, or an rxfilename (a pipe's existing file arguments count).
-// Readers in src/io call it for the files they read and the files a list points at; every owned
-// output is checked against every input noted so far, at creation and again at commit.
-void note_input(const std::string& rx);
-void note_inputs(const std::vector<std::string>& rxs);
-void clear_noted_inputs();  // for tests
-// Throws Error when `output_dir` is, contains or lies inside a noted input.
-void check_output_not_input(const std::string& output_dir);
-
-// Throws Error when the file `path` is a noted input (real paths); AtomicTextFile and write_wav call
-// it for every file they are asked to write outside a staging directory.
-void check_file_not_input(const std::string& path);
+// The installed policy (before any: program "tsrir", no --overwrite, an empty ledger, as for the
+// Python module, whose readers record into it).
+const OutputPolicy& output_policy();
+void install_output_policy(const OutputPolicy& policy);
+// The installed policy's ledger: what a program hands the readers of its inputs.
+InputLedger* run_inputs();
 
 // The name of the marker file.
 extern const char* const kOwnedMarkerName;

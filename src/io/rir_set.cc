@@ -60,7 +60,7 @@ void take_rooms_from_list_beside(const std::string& scp, std::vector<RirRef>* re
 
 }  // namespace
 
-std::vector<RirRef> read_rir_refs(const std::string& path) {
+std::vector<RirRef> read_rir_refs(const std::string& path, InputLedger* inputs) {
   if (!fs::exists(path)) throw Error(path + ": no such file");
   std::vector<RirRef> refs;
   if (has_audio_extension(path)) {
@@ -70,17 +70,17 @@ std::vector<RirRef> read_rir_refs(const std::string& path) {
     r.rxfilename = path;
     r.where = path;
     refs.push_back(r);
-    note_input(path);
+    if (inputs) inputs->add(path);
     return refs;
   }
-  note_input(path);
+  if (inputs) inputs->add(path);
   for (const auto& e : read_rir_list(path)) {
     RirRef r;
     r.id = e.rir_id;
     r.room_id = e.room_id;
     r.rxfilename = e.rxfilename;
     r.where = path + ":" + std::to_string(e.line);
-    note_input(r.rxfilename);
+    if (inputs) inputs->add(r.rxfilename);
     refs.push_back(std::move(r));
   }
   if (!refs.empty() && is_scp_form(path)) take_rooms_from_list_beside(path, &refs);

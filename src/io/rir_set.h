@@ -27,9 +27,10 @@ struct RirRef {
 };
 
 // Detects the kind of `path` as described above. Errors: missing file, malformed lines,
-// duplicate ids (each with file:line), an scp id missing from the rir_list beside it. Notes the
-// list and every file it points at as inputs (io/owned_output.h).
-std::vector<RirRef> read_rir_refs(const std::string& path);
+// duplicate ids (each with file:line), an scp id missing from the rir_list beside it. Records the
+// list and every file it points at in `inputs` (a program passes run_inputs(), io/owned_output.h;
+// null: recorded nowhere).
+std::vector<RirRef> read_rir_refs(const std::string& path, InputLedger* inputs);
 
 // Loads one RIR (resampled if options.target_rate_hz > 0); the Signal's id is ref.id. Errors name
 // the id and where it was listed.

@@ -55,10 +55,14 @@ constexpr uint16_t kWaveFormatIeeeFloat = 3;
 
 }  // namespace
 
+const Choices<SampleFormat>& sample_format_choices() {
+  static const Choices<SampleFormat> choices = {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}};
+  return choices;
+}
+
 SampleFormat parse_sample_format(const std::string& name) {
-  if (name == "int16") return SampleFormat::kInt16;
-  if (name == "float" || name == "float32") return SampleFormat::kFloat32;
-  throw Error("unknown sample format '" + name + "' (expected int16 or float)");
+  if (name == "float32") return SampleFormat::kFloat32;  // numpy's name
+  return parse_choice(sample_format_choices(), name, "sample format");
 }
 
 std::vector<char> wav_header(size_t frames, int channels, double sample_rate_hz, SampleFormat format) {

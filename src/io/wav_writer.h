@@ -9,11 +9,13 @@
 #include <vector>
 
 #include "io/signal.h"
+#include "util/options.h"
 
 namespace tsrir {
 
 enum class SampleFormat { kInt16, kFloat32 };
-SampleFormat parse_sample_format(const std::string& name);  // "int16" | "float"
+const Choices<SampleFormat>& sample_format_choices();       // "int16" | "float"
+SampleFormat parse_sample_format(const std::string& name);  // also "float32"
 
 struct AudioWriteOptions {
   SampleFormat format = SampleFormat::kInt16;

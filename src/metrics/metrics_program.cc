@@ -4,6 +4,8 @@
 #include <exception>
 
 #include "io/atomic_output.h"
+#include "io/common_options.h"
+#include "io/owned_output.h"
 #include "util/error.h"
 #include "util/log.h"
 #include "util/parallel.h"
@@ -13,12 +15,12 @@ namespace tsrir {
 void MetricsRunOptions::Register(OptionsItf* opts) {
   metrics.Register(opts);
   opts->Register("channel", &channel, "channel to measure (0-based; -1 = mean of all channels)");
-  opts->Register("num-threads", &num_threads, "threads (RIRs are measured in parallel)");
+  CommonOptions(opts).threads(&num_threads, "RIRs are measured in parallel");
   opts->Register("skip-errors", &skip_errors, "report unreadable or unmeasurable RIRs and go on");
 }
 
 void RirMetricsCommand::Register(OptionsItf* opts) {
-  opts->RegisterEnum("format", &format, {{"table", MetricsFormat::kTable}, {"json", MetricsFormat::kJson}},
+  opts->RegisterEnum("format", &format, metrics_format_choices(),
                      "output format");
   opts->Register("bands", &bands, "table format: add T20, T30 and EDT columns per octave band");
   run.Register(opts);
@@ -72,7 +74,7 @@ namespace {
 std::vector<RirRef> read_inputs(const std::vector<std::string>& paths) {
   std::vector<RirRef> all;
   for (const std::string& p : paths) {
-    std::vector<RirRef> refs = read_rir_refs(p);
+    std::vector<RirRef> refs = read_rir_refs(p, run_inputs());
     all.insert(all.end(), std::make_move_iterator(refs.begin()), std::make_move_iterator(refs.end()));
   }
   return all;
@@ -84,7 +86,7 @@ struct RunCounts {
 
 RunCounts summarise_set(const std::string& path, const MetricsRunOptions& run, MetricsSummary* summary) {
   RunCounts c;
-  measure_rir_refs(read_rir_refs(path), run, [&](const MetricsOutcome& r) {
+  measure_rir_refs(read_rir_refs(path, run_inputs()), run, [&](const MetricsOutcome& r) {
     if (r.ok) {
       summary->add(r.metrics);
       ++c.ok;

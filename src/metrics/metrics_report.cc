@@ -9,10 +9,13 @@
 
 namespace tsrir {
 
+const Choices<MetricsFormat>& metrics_format_choices() {
+  static const Choices<MetricsFormat> choices = {{"table", MetricsFormat::kTable}, {"json", MetricsFormat::kJson}};
+  return choices;
+}
+
 MetricsFormat parse_metrics_format(const std::string& name) {
-  if (name == "table") return MetricsFormat::kTable;
-  if (name == "json") return MetricsFormat::kJson;
-  throw Error("unknown format '" + name + "' (expected table or json)");
+  return parse_choice(metrics_format_choices(), name, "format");
 }
 
 std::string band_label(double center_hz) { return format_double(center_hz, 6); }

@@ -15,7 +15,8 @@ namespace tsrir {
 class JsonWriter;
 
 enum class MetricsFormat { kTable, kJson };
-MetricsFormat parse_metrics_format(const std::string& name);  // "table" | "json"
+const Choices<MetricsFormat>& metrics_format_choices();       // "table" | "json"
+MetricsFormat parse_metrics_format(const std::string& name);
 
 // Band column label: "62.5", "125", ..., "8000".
 std::string band_label(double center_hz);

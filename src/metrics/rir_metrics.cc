@@ -3,406 +3,33 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <memory>
 
 #include "dsp/bands.h"
 #include "dsp/octave_filter.h"
 #include "metrics/decay_fit.h"
 #include "metrics/irstats.h"
-#include "metrics/lundeby.h"
+#include "metrics/metrics_common.h"
+#include "metrics/metrics_irstats.h"
+#include "metrics/metrics_iso.h"
 #include "util/error.h"
 #include "util/strings.h"
 
 namespace tsrir {
 
-namespace {
+using metrics_detail::kOctaveOrder;
 
-constexpr double kNaN = kMetricsNaN;
-constexpr int kOctaveOrder = 3;  // ANSI S1.1 order-3 (6th-order bandpass), as octdsgn
-
-std::string band_name(double center_hz) { return center_hz > 0 ? format_double(center_hz) + " Hz" : "broadband"; }
-
-std::string rir_name(const Signal& rir) { return "RIR '" + rir.id + "'"; }
-
-void validate(const Signal& rir) {
-  if (!(rir.sample_rate_hz > 0)) throw Error(rir_name(rir) + ": sample rate must be positive");
-  if (rir.samples.empty()) throw Error(rir_name(rir) + ": no samples");
-  bool any = false;
-  for (size_t i = 0; i < rir.samples.size(); ++i) {
-    const float v = rir.samples[i];
-    if (!std::isfinite(v)) throw Error(rir_name(rir) + ": NaN or Inf at sample " + std::to_string(i));
-    any = any || v != 0.0f;
-  }
-  if (!any) throw Error(rir_name(rir) + ": silent (all samples are zero)");
+const Choices<MetricsDefinition>& metrics_definition_choices() {
+  static const Choices<MetricsDefinition> choices = {{"iso", MetricsDefinition::kIso},
+                                                     {"irstats", MetricsDefinition::kIrstats}};
+  return choices;
 }
-
-// Filters for one (rate, definition), designed once per thread: designs cost microseconds each
-// but RIR sets usually share one rate.
-const std::vector<SosFilter>& band_filters(double fs, const std::vector<double>& centers) {
-  thread_local std::map<std::pair<double, std::vector<double>>, std::vector<SosFilter>> cache;
-  auto key = std::make_pair(fs, centers);
-  auto it = cache.find(key);
-  if (it == cache.end()) {
-    std::vector<SosFilter> filters;
-    for (double fc : centers) filters.push_back(ansi_octave_filter(fc, fs, kOctaveOrder));
-    it = cache.emplace(std::move(key), std::move(filters)).first;
-  }
-  return it->second;
-}
-
-double mean_of_mid_bands(const RirMetrics& m, double BandMetrics::*field) {
-  const BandMetrics* a = m.band(500.0);
-  const BandMetrics* b = m.band(1000.0);
-  if (!a || !b) return kNaN;
-  return 0.5 * (a->*field + b->*field);
-}
-
-// The single-number values: mean of the 500 Hz and 1 kHz bands, NaN (with a reason) otherwise.
-void set_mid_band_values(RirMetrics* m) {
-  m->t60_s = mean_of_mid_bands(*m, &BandMetrics::rt_s);
-  m->edt_s = mean_of_mid_bands(*m, &BandMetrics::edt_s);
-  if (!m->band(500.0) || !m->band(1000.0)) {
-    m->warnings.push_back("T60, EDT: the 500 Hz and 1 kHz bands are not both measured at " +
-                          format_double(m->sample_rate_hz) + " Hz");
-  } else {
-    if (!std::isfinite(m->t60_s)) m->warnings.push_back("T60: unmeasurable in the 500 Hz or 1 kHz band");
-    if (!std::isfinite(m->edt_s)) m->warnings.push_back("EDT: unmeasurable in the 500 Hz or 1 kHz band");
-  }
-}
-
-double energy_sum(const std::vector<float>& h, size_t begin, size_t end) {
-  double s = 0;
-  for (size_t i = begin; i < end && i < h.size(); ++i) s += (double)h[i] * h[i];
-  return s;
-}
-
-// ---------------------------------------------------------------- iso ----
-
-// Per-thread buffers reused from one RIR to the next: a 1 s RIR needs a few MB of scratch, and
-// fresh allocations of that size cost page faults on every RIR.
-struct IsoWorkspace {
-  std::vector<std::vector<double>> bands;  // band outputs, squared in place
-  std::vector<double> energy;              // broadband squared samples from the onset
-  std::vector<double> tail;                // backward sums of the current energy
-  std::vector<double> db;                  // EDC in dB over the fit ranges
-};
-
-IsoWorkspace& iso_workspace() {
-  thread_local IsoWorkspace w;
-  return w;
-}
-
-// A decay curve measured from the onset: noise power subtracted, truncated at the Lundeby
-// intersection and compensated for the cut tail (or the plain Schroeder integral when noise
-// handling is off).
-struct IsoDecay {
-  std::vector<double> edc;     // index 0 = onset
-  size_t usable_end = 0;       // samples of edc that are measured (not extrapolated)
-  size_t model_start = 0;      // where the modelled exponential tail takes over
-  LundebyResult lundeby;
-  double tail_energy = 0;
-  bool truncated = false;
-};
-
-void iso_decay(const double* energy, size_t n, double fs, double center_hz, bool use_lundeby, const std::string& label,
-               std::vector<std::string>* warnings, std::vector<double>* tail_buffer, IsoDecay* d) {
-  std::vector<double>& tail = *tail_buffer;
-  tail.resize(n + 1);
-  tail[n] = 0.0;
-  for (size_t i = n; i-- > 0;) tail[i] = tail[i + 1] + energy[i];
-  d->lundeby = lundeby_intersection_from_tail(tail.data(), n, fs, center_hz);
-  d->tail_energy = 0;
-  d->truncated = false;
-  size_t end = n;
-  if (use_lundeby) {
-    if (d->lundeby.ok) {
-      end = d->lundeby.intersection;
-      d->tail_energy = lundeby_tail_energy(d->lundeby, fs);
-      d->truncated = true;
-    } else {
-      warnings->push_back(label + ": noise-floor detection failed (" + d->lundeby.failure +
-                          "); decay integrated without truncation");
-    }
-  }
-  d->model_start = end;
-  d->edc.resize(end);
-  if (d->truncated) {
-    // Chu: the noise is also present before the intersection; subtracting its power keeps it
-    // from flattening the end of the evaluation range (T30 at 47 dB peak-to-noise: +2.9 % with
-    // truncation and compensation alone, +1 % with the subtraction too).
-    const double noise = d->lundeby.noise_power, cut = tail[end];
-    for (size_t k = 0; k < end; ++k) d->edc[k] = (tail[k] - cut) - noise * (double)(end - k) + d->tail_energy;
-    // Noise fluctuations can drive the last values to zero or below: those are not measured.
-    size_t k = 0;
-    while (k < end && d->edc[k] > 0) ++k;
-    end = k;
-  } else {
-    for (size_t k = 0; k < end; ++k) d->edc[k] = tail[k];
-  }
-  d->usable_end = end;
-}
-
-// Energy from sample `k` (relative to the onset) to the end, noise-compensated: inside the
-// measured part the EDC itself, beyond the intersection the modelled exponential tail.
-double iso_late_energy(const IsoDecay& d, size_t k, double fs) {
-  if (k < d.usable_end) return d.edc[k];
-  if (!d.truncated || k < d.model_start) return 0.0;
-  const double t_s = (double)(k - d.model_start) / fs;
-  return d.tail_energy * std::pow(10.0, -6.0 * t_s / d.lundeby.late_decay_time_s);
-}
-
-// D50 and C80 (ISO 3382-1, fixed 50 and 80 ms limits): the early sums and the noise-compensated
-// late energy of the broadband decay, as C50 uses them.
-void iso_d50_c80(const std::vector<float>& h, size_t onset, double fs, const IsoDecay& bb, RirMetrics* m);
-
-BandMetrics iso_band_metrics(const IsoDecay& d, double center_hz, double fs, bool use_lundeby,
-                             const std::string& label, std::vector<std::string>* warnings, std::vector<double>* db) {
-  BandMetrics b;
-  b.center_hz = center_hz;
-  if (d.usable_end == 0 || !(d.edc[0] > 0)) {
-    warnings->push_back(label + ": no energy after the onset");
-    return b;
-  }
-  const double psnr = d.lundeby.peak_to_noise_db;
-  if (use_lundeby && d.truncated) b.dynamic_range_db = psnr;
-  // One dB conversion covers all three ranges (0 .. -35 dB).
-  const size_t span = std::min(d.usable_end, first_index_at_or_below(d.edc.data(), d.usable_end, d.edc[0] * std::pow(10.0, -3.5)) + 1);
-  db->resize(span);
-  energy_to_db(d.edc.data(), span, db->data());
-  // ISO 3382-1: the bottom of an evaluation range must lie >= 10 dB above the noise, so T30 needs
-  // 45 dB and T20 35 dB of peak-to-noise ratio, EDT 20 dB.
-  auto fit = [&](double upper_db, double lower_db) -> double {
-    if (std::isfinite(psnr) && psnr < -lower_db + 10.0) return kNaN;
-    return fit_decay_range(d.edc.data(), db->data(), d.usable_end, d.edc[0], fs, upper_db, lower_db).decay_time_s();
-  };
-  b.edt_s = fit(0.0, -10.0);
-  b.t20_s = fit(-5.0, -25.0);
-  b.t30_s = fit(-5.0, -35.0);
-  const std::string range = std::isfinite(psnr) ? " (peak-to-noise " + format_double(psnr, 3) + " dB)" : "";
-  if (std::isfinite(b.t30_s)) {
-    b.rt_s = b.t30_s;
-  } else if (std::isfinite(b.t20_s)) {
-    b.rt_s = b.t20_s;
-    warnings->push_back(label + ": dynamic range too small for T30" + range + "; reporting T20");
-  } else {
-    warnings->push_back(label + ": dynamic range too small for T20 and T30" + range);
-  }
-  if (!std::isfinite(b.edt_s)) warnings->push_back(label + ": dynamic range too small for EDT" + range);
-  return b;
-}
-
-RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
-  RirMetrics m;
-  m.id = rir.id;
-  m.sample_rate_hz = rir.sample_rate_hz;
-  const std::vector<float>& h = rir.samples;
-  const size_t n = h.size();
-  const double fs = rir.sample_rate_hz;
-
-  double peak_e = -1;
-  for (size_t i = 0; i < n; ++i) {
-    const double e = (double)h[i] * h[i];
-    if (e > peak_e) {
-      peak_e = e;
-      m.peak_sample = i;
-    }
-  }
-  const double onset_level = peak_e * std::pow(10.0, -o.onset_threshold_db / 10.0);
-  m.onset_sample = 0;
-  while (m.onset_sample < n && (double)h[m.onset_sample] * h[m.onset_sample] < onset_level) ++m.onset_sample;
-  const size_t onset = m.onset_sample;
-  const size_t te = (size_t)std::lround(o.clarity_time_ms * 1e-3 * fs);
-  if (onset + te >= n) {
-    throw Error(rir_name(rir) + ": too short: " + format_double(1e3 * (n - onset) / fs, 4) +
-                " ms after the onset, the clarity window needs more than " + format_double(o.clarity_time_ms) + " ms");
-  }
-  const size_t rem = n - onset;
-
-  // Broadband decay, C50 and DRR.
-  IsoWorkspace& w = iso_workspace();
-  w.energy.resize(rem);
-  for (size_t i = 0; i < rem; ++i) w.energy[i] = (double)h[onset + i] * h[onset + i];
-  thread_local IsoDecay bb;
-  iso_decay(w.energy.data(), rem, fs, 0.0, o.lundeby, "broadband", &m.warnings, &w.tail, &bb);
-  m.broadband = iso_band_metrics(bb, 0.0, fs, o.lundeby, "broadband", &m.warnings, &w.db);
-  m.broadband.level_db = 0.0;
-
-  const double early = energy_sum(h, onset, onset + te);
-  const double late = iso_late_energy(bb, te, fs);
-  m.c50_db = late > 0 ? 10.0 * std::log10(early / late) : kNaN;
-  if (!(late > 0)) m.warnings.push_back("C50: no energy after " + format_double(o.clarity_time_ms) + " ms");
-  iso_d50_c80(h, onset, fs, bb, &m);
-
-  const long pre = std::lround(o.direct_pre_ms * 1e-3 * fs), post = std::lround(o.direct_post_ms * 1e-3 * fs);
-  const size_t d_begin = (size_t)std::max<long>(0, (long)m.peak_sample - pre);
-  const size_t d_end = std::min(n, m.peak_sample + (size_t)std::max<long>(0, post) + 1);
-  const double direct = energy_sum(h, d_begin, d_end);
-  // The reverberant part starts after the direct window; before the onset there is none.
-  const double reverb = d_end >= onset ? iso_late_energy(bb, d_end - onset, fs) : iso_late_energy(bb, 0, fs);
-  m.drr_db = reverb > 0 ? 10.0 * std::log10(direct / reverb) : kNaN;
-  if (!(reverb > 0)) m.warnings.push_back("DRR: no energy after the direct window");
-
-  // Octave bands, filtered time-reversed in one pass over the RIR.
-  const std::vector<double> centers = metrics_band_centers_hz(fs, MetricsDefinition::kIso);
-  std::vector<std::vector<double>>& y = w.bands;
-  sos_filter_bank(band_filters(fs, centers), h.data(), n, /*time_reversed=*/true, &y);
-  IsoDecay& d = bb;  // the broadband curve is no longer needed
-  const double total = energy_sum(h, 0, n);
-  for (size_t b = 0; b < centers.size(); ++b) {
-    const std::string label = band_name(centers[b]);
-    double band_total = 0, band_peak = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const double v = y[b][i] * y[b][i];
-      y[b][i] = v;
-      band_total += v;
-      band_peak = std::max(band_peak, v);
-    }
-    // Time-reversed filtering moves part of the band's direct sound ahead of the broadband onset;
-    // the band EDC starts at the band's own onset when that is earlier, so all of it is counted
-    // (otherwise E(0) is too small, the -5 dB point moves into the later, often slower decay and
-    // T30 comes out long: +2 % on average over the R3VIVAL set, up to +5.5 %).
-    const double band_onset_level = band_peak * std::pow(10.0, -o.onset_threshold_db / 10.0);
-    size_t start = 0;
-    while (start < onset && y[b][start] < band_onset_level) ++start;
-    iso_decay(y[b].data() + start, n - start, fs, centers[b], o.lundeby, label, &m.warnings, &w.tail, &d);
-    BandMetrics bm = iso_band_metrics(d, centers[b], fs, o.lundeby, label, &m.warnings, &w.db);
-    bm.level_db = band_total > 0 ? 10.0 * std::log10(band_total / total) : -INFINITY;
-    // ISO 3382-1: time-reversed filtering stays unbiased for bandwidth * T > 4.
-    const BandEdgesHz edges = ansi_octave_edges_hz(centers[b], kOctaveOrder);
-    if (std::isfinite(bm.rt_s) && (edges.high_hz - edges.low_hz) * bm.rt_s < 4.0) {
-      m.warnings.push_back(label + ": bandwidth x T = " + format_double((edges.high_hz - edges.low_hz) * bm.rt_s, 3) +
-                           " < 4, the band filter may lengthen this decay");
-    }
-    m.bands.push_back(bm);
-  }
-  set_mid_band_values(&m);
-  return m;
-}
-
-void iso_d50_c80(const std::vector<float>& h, size_t onset, double fs, const IsoDecay& bb, RirMetrics* m) {
-  const size_t n = h.size();
-  const size_t te50 = (size_t)std::lround(0.050 * fs), te80 = (size_t)std::lround(0.080 * fs);
-  if (onset + te50 < n) {
-    const double early = energy_sum(h, onset, onset + te50);
-    const double all = early + iso_late_energy(bb, te50, fs);
-    m->d50_percent = all > 0 ? 100.0 * early / all : kNaN;
-  } else {
-    m->warnings.push_back("D50: the RIR ends less than 50 ms after the onset");
-  }
-  if (onset + te80 < n) {
-    const double early = energy_sum(h, onset, onset + te80);
-    const double late = iso_late_energy(bb, te80, fs);
-    m->c80_db = late > 0 ? 10.0 * std::log10(early / late) : kNaN;
-    if (!(late > 0)) m->warnings.push_back("C80: no energy after 80 ms");
-  } else {
-    m->warnings.push_back("C80: the RIR ends less than 80 ms after the onset");
-  }
-}
-
-// ------------------------------------------------------------ irstats ----
-
-// D50 and C80 the way irStats computes its CTE: early energy from 2.5 ms before the peak to the
-// limit, late energy after it, trapezoidal sums (irstats.h).
-void irstats_d50_c80(const std::vector<float>& x, size_t t0, double fs, RirMetrics* m) {
-  const size_t n = x.size();
-  const size_t c = (size_t)std::lround(0.0025 * fs);
-  const size_t begin = t0 >= c ? t0 - c : 0;
-  const size_t te50 = (size_t)std::lround(0.050 * fs), te80 = (size_t)std::lround(0.080 * fs);
-  if (t0 + te50 + 1 < n) {
-    const double early = irstats_trapz_energy(x, begin, t0 + te50);
-    const double all = early + irstats_trapz_energy(x, t0 + te50 + 1, n - 1);
-    m->d50_percent = all > 0 ? 100.0 * early / all : kNaN;
-  } else {
-    m->warnings.push_back("D50: early time limit (50 ms) out of range");
-  }
-  if (t0 + te80 + 1 < n) {
-    m->c80_db = 10.0 * std::log10(irstats_trapz_energy(x, begin, t0 + te80) / irstats_trapz_energy(x, t0 + te80 + 1, n - 1));
-  } else {
-    m->warnings.push_back("C80: early time limit (80 ms) out of range");
-  }
-}
-
-
-BandMetrics irstats_band(const double* z, size_t n, double center_hz, double fs, std::vector<std::string>* warnings) {
-  BandMetrics b;
-  b.center_hz = center_hz;
-  const std::string label = band_name(center_hz);
-  thread_local IrstatsDecayFitter fitter;
-  fitter.reset(z, n);
-  auto decay = [&](double hi, double lo, const char* what) {
-    const IrstatsDecay d = fitter.fit(fs, hi, lo);
-    if (!d.range_reached) {
-      warnings->push_back(label + ": " + what + ": decay never reaches " + format_double(lo) +
-                          " dB; fit ends at the last sample (irStats behaviour)");
-    }
-    if (!d.failure.empty()) warnings->push_back(label + ": " + what + ": " + d.failure);
-    return d.time_s;
-  };
-  b.rt_s = decay(0.0, -60.0, "RT");
-  b.edt_s = decay(0.0, -10.0, "EDT");
-  b.t20_s = decay(-5.0, -25.0, "T20");
-  b.t30_s = decay(-5.0, -35.0, "T30");
-  return b;
-}
-
-RirMetrics measure_irstats(const Signal& rir, const MetricsOptions& o) {
-  RirMetrics m;
-  m.id = rir.id;
-  m.sample_rate_hz = rir.sample_rate_hz;
-  const std::vector<float>& x = rir.samples;
-  const size_t n = x.size();
-  const double fs = rir.sample_rate_hz;
-  if (fs < 5000) throw Error(rir_name(rir) + ": irstats needs a sample rate of at least 5000 Hz");
-  const size_t te = (size_t)std::lround(o.clarity_time_ms * 1e-3 * fs);
-  if (te >= n) {
-    throw Error(rir_name(rir) + ": too short: " + format_double(1e3 * n / fs, 4) + " ms, the early time limit is " +
-                format_double(o.clarity_time_ms) + " ms");
-  }
-  size_t ties = 0;
-  const size_t t0 = irstats_peak_index(x, &ties);
-  if (ties > 1) m.warnings.push_back("more than one peak found; choosing the first (irStats behaviour)");
-  m.onset_sample = m.peak_sample = t0;
-
-  const IrstatsRatios ratios = irstats_drr_cte(x, t0, fs, 0.0025, o.clarity_time_ms * 1e-3);
-  m.drr_db = ratios.drr_db;
-  m.c50_db = ratios.cte_db;
-  m.warnings.insert(m.warnings.end(), ratios.warnings.begin(), ratios.warnings.end());
-  irstats_d50_c80(x, t0, fs, &m);
-
-  IsoWorkspace& w = iso_workspace();  // the same scratch buffers serve this definition
-  w.energy.assign(x.begin(), x.end());
-  irstats_decay_curve(w.energy.data(), n, &w.tail);
-  m.broadband = irstats_band(w.tail.data() + t0, n - t0, 0.0, fs, &m.warnings);
-  m.broadband.level_db = 0.0;
-
-  const std::vector<double> centers = metrics_band_centers_hz(fs, MetricsDefinition::kIrstats);
-  std::vector<std::vector<double>>& y = w.bands;
-  sos_filter_bank(band_filters(fs, centers), x.data(), n, /*time_reversed=*/false, &y);
-  const double total = energy_sum(x, 0, n);
-  for (size_t b = 0; b < centers.size(); ++b) {
-    irstats_decay_curve(y[b].data(), n, &w.tail);
-    BandMetrics bm = irstats_band(w.tail.data() + t0, n - t0, centers[b], fs, &m.warnings);
-    double band_total = 0;
-    for (double v : y[b]) band_total += v * v;
-    bm.level_db = band_total > 0 ? 10.0 * std::log10(band_total / total) : -INFINITY;
-    m.bands.push_back(bm);
-  }
-  set_mid_band_values(&m);
-  return m;
-}
-
-}  // namespace
 
 MetricsDefinition parse_metrics_definition(const std::string& name) {
-  if (name == "iso") return MetricsDefinition::kIso;
-  if (name == "irstats") return MetricsDefinition::kIrstats;
-  throw Error("unknown metrics definition '" + name + "' (expected iso or irstats)");
+  return parse_choice(metrics_definition_choices(), name, "metrics definition");
 }
 
 void MetricsOptions::Register(OptionsItf* opts) {
-  opts->RegisterEnum("definition", &definition,
-                     {{"iso", MetricsDefinition::kIso}, {"irstats", MetricsDefinition::kIrstats}},
-                     "definition of the parameters");
+  opts->RegisterEnum("definition", &definition, metrics_definition_choices(), "definition of the parameters");
   opts->Register("lundeby", &lundeby, "iso: noise-floor subtraction, Lundeby truncation and compensation");
   opts->Register("direct-pre-ms", &direct_pre_ms, "iso: direct-sound window before the peak (ms)");
   opts->Register("direct-post-ms", &direct_post_ms, "iso: direct-sound window after the peak (ms)");
@@ -411,7 +38,7 @@ void MetricsOptions::Register(OptionsItf* opts) {
 }
 
 std::string metrics_definition_name(MetricsDefinition definition) {
-  return definition == MetricsDefinition::kIso ? "iso" : "irstats";
+  return choice_name(metrics_definition_choices(), definition);
 }
 
 const BandMetrics* RirMetrics::band(double center_hz) const {
@@ -441,7 +68,9 @@ std::vector<double> schroeder_decay_db(const std::vector<float>& h, size_t begin
 }
 
 RirMetrics measure_rir(const Signal& rir, const MetricsOptions& options) {
-  validate(rir);
+  using metrics_detail::measure_irstats;
+  using metrics_detail::measure_iso;
+  metrics_detail::validate(rir);
   return options.definition == MetricsDefinition::kIso ? measure_iso(rir, options) : measure_irstats(rir, options);
 }
 

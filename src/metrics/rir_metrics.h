@@ -28,6 +28,7 @@ namespace tsrir {
 
 enum class MetricsDefinition { kIso, kIrstats };
 // "iso" | "irstats"; anything else throws Error.
+const Choices<MetricsDefinition>& metrics_definition_choices();  // "iso" | "irstats"
 MetricsDefinition parse_metrics_definition(const std::string& name);
 std::string metrics_definition_name(MetricsDefinition definition);
 

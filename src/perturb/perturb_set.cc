@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "io/common_options.h"
+#include "io/owned_output.h"
 #include "io/rir_set.h"
 #include "metrics/rir_metrics.h"
 #include "util/error.h"
@@ -46,17 +48,17 @@ bool fit_int16(Signal& rir) {
 
 void PerturbSetOptions::Register(OptionsItf* opts) {
   perturbation.Register(opts);
-  opts->Register("seed", &seed, "Random seed (the ringing modes' frequencies and phases, per RIR id)");
-  opts->Register("num-threads", &num_threads, "Threads (results do not depend on it)");
-  opts->RegisterEnum("format", &format, {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}},
-                     "Output sample format");
+  CommonOptions(opts)
+      .seed(&seed, "the ringing modes' frequencies and phases, per RIR id")
+      .threads(&num_threads, "RIRs are perturbed in parallel; results do not depend on it")
+      .audio_format(&format);
 }
 
 PerturbSetSummary perturb_rir_set(const std::string& in_set_path, const std::string& out_dir,
                                   const PerturbSetOptions& options) {
   options.perturbation.validate();
   if (options.num_threads < 1) throw Error("--num-threads must be >= 1");
-  const std::vector<RirRef> refs = read_rir_refs(in_set_path);
+  const std::vector<RirRef> refs = read_rir_refs(in_set_path, run_inputs());
   if (refs.empty()) throw Error(in_set_path + ": no RIRs listed");
   RirSetWriter writer(out_dir, options.format);
   std::vector<MeasuredPair> measured(refs.size());

@@ -24,6 +24,13 @@ Field field(T Options::*member) {
           [member](const Options& o) { return py::cast(o.*member); }};
 }
 
+// A typed choice, named as on the command line (the option's own Choices table).
+template <typename E>
+Field choice_field(E Options::*member, const Choices<E>& choices) {
+  return {[member, &choices](Options& o, const py::handle& v) { o.*member = choice_value(choices, v.cast<std::string>()); },
+          [member, &choices](const Options& o) { return py::cast(choice_name(choices, o.*member)); }};
+}
+
 // The per-recording output rules live in ReverbOptions (options.reverb).
 template <typename T>
 Field reverb_field(T ReverbOptions::*member) {
@@ -38,7 +45,7 @@ const std::map<std::string, Field>& fields() {
     t["noise_set_parameters"] = field(&Options::noise_set_parameters);
     t["prefix"] = field(&Options::prefix);
     t["speech_rvb_probability"] = field(&Options::speech_rvb_probability);
-    t["noise_start"] = field(&Options::noise_start);
+    t["noise_start"] = choice_field(&Options::noise_start, noise_start_choices());
     t["shift_output"] = reverb_field(&ReverbOptions::shift_output);
     t["normalize_output"] = reverb_field(&ReverbOptions::normalize_output);
     t["rir_smoothing_weight"] = field(&Options::rir_smoothing_weight);
@@ -48,18 +55,13 @@ const std::map<std::string, Field>& fields() {
     t["snr_reference"] = {
         [](Options& o, const py::handle& v) { o.reverb.snr_reference = parse_snr_reference(v.cast<std::string>()); },
         [](const Options& o) { return py::cast(snr_reference_name(o.reverb.snr_reference)); }};
-#if TSRIR_PYTHON_NOISE_TYPES
     t["foreground_snrs"] = field(&Options::foreground_snrs);
     t["background_snrs"] = field(&Options::background_snrs);
     t["isotropic_noise_addition_probability"] = field(&Options::isotropic_noise_addition_probability);
     t["pointsource_noise_addition_probability"] = field(&Options::pointsource_noise_addition_probability);
     t["max_noises_per_minute"] = field(&Options::max_noises_per_minute);
     t["max_noises_per_recording"] = field(&Options::max_noises_per_recording);
-    t["point_source_noise_rir"] = field(&Options::point_source_noise_rir);
-#else
-    t["snrs"] = field(&Options::snrs);
-    t["noise_addition_probability"] = field(&Options::noise_addition_probability);
-#endif
+    t["point_source_noise_rir"] = choice_field(&Options::point_source_noise_rir, point_source_noise_rir_choices());
     return t;
   }();
   return table;
@@ -78,6 +80,8 @@ void set_augment_option(ReverberateDataOptions& options, const std::string& name
     it->second.set(options, value);
   } catch (const py::cast_error&) {
     throw Error("Augmenter: option '" + name + "' has a value of the wrong type");
+  } catch (const Error& e) {
+    throw Error("Augmenter: option '" + name + "': " + e.what());
   }
 }
 

@@ -10,15 +10,6 @@
 
 #include "augment/reverberate_data.h"
 
-// Which reverberate-data the library has: Kaldi's noise types (foreground/background SNRs,
-// isotropic and point-source probabilities, noises per minute) once the noise-type registry
-// (augment/noise_type.h) is there, else one noise per recording with --snrs.
-#if __has_include("augment/noise_type.h")
-#define TSRIR_PYTHON_NOISE_TYPES 1
-#else
-#define TSRIR_PYTHON_NOISE_TYPES 0
-#endif
-
 namespace tsrir::python {
 
 // Throws Error naming the option for an unknown name or a value of the wrong type.

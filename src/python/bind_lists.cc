@@ -54,7 +54,7 @@ void bind_lists(py::module_& m) {
           py::dict d;
           d["noise_id"] = e.noise_id;
           d["noise_type"] = e.noise_type;
-          d["bg_fg_type"] = e.bg_fg_type;
+          d["bg_fg_type"] = choice_name(bg_fg_type_choices(), e.bg_fg_type);
           d["room_linkage"] = e.room_linkage;
           d["probability"] = optional_number(e.probability);
           d["rxfilename"] = e.rxfilename;

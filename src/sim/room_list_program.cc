@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "io/atomic_output.h"
+#include "io/common_options.h"
 #include "sim/room_list.h"
 #include "util/error.h"
 #include "util/log.h"
@@ -11,22 +12,10 @@
 namespace tsrir::sim {
 namespace {
 
-const char* format_name(MetadataFormat f) {
-  switch (f) {
-    case MetadataFormat::kR3vival: return "r3vival";
-    case MetadataFormat::kBut: return "but";
-    case MetadataFormat::kTable: break;
-  }
-  return "table";
-}
-
-const char* draw_name(AbsorptionDraw d) {
-  switch (d) {
-    case AbsorptionDraw::kPerRir: return "rir";
-    case AbsorptionDraw::kPerSurface: return "surface";
-    case AbsorptionDraw::kPerSurfaceBand: break;
-  }
-  return "surface-band";
+const Choices<MetadataFormat>& metadata_format_choices() {
+  static const Choices<MetadataFormat> choices = {
+      {"r3vival", MetadataFormat::kR3vival}, {"but", MetadataFormat::kBut}, {"table", MetadataFormat::kTable}};
+  return choices;
 }
 
 // A seed as a person wrote it: those given as negative numbers (two's complement) print negative.
@@ -38,19 +27,13 @@ std::string seed_text(Seed seed) {
 }  // namespace
 
 void RoomListCommand::Register(OptionsItf* opts) {
-  opts->RegisterEnum("format", &format,
-                     {{"r3vival", MetadataFormat::kR3vival}, {"but", MetadataFormat::kBut}, {"table", MetadataFormat::kTable}},
-                     "input format");
+  opts->RegisterEnum("format", &format, metadata_format_choices(), "input format");
   opts->Register("absorption-range", &absorption_range, "min,max of the uniform absorption draw, within (0,1]");
-  opts->RegisterEnum("absorption-draw", &draw.draw,
-                     {{"rir", AbsorptionDraw::kPerRir},
-                      {"surface", AbsorptionDraw::kPerSurface},
-                      {"surface-band", AbsorptionDraw::kPerSurfaceBand}},
+  opts->RegisterEnum("absorption-draw", &draw.draw, absorption_draw_choices(),
                      "what gets its own draw: rir (one value for the room), surface (one per surface, flat over "
                      "bands), surface-band (one per surface and octave band)");
   opts->Register("scattering", &draw.scattering, "scattering coefficient written for every RIR");
-  opts->Register("seed", &draw.seed, "random seed of the absorption draws");
-  opts->RegisterAlias("random-seed", "seed");
+  CommonOptions(opts).seed(&draw.seed, "the absorption draws");
   opts->Register("room", &room, "r3vival: room size Lx,Ly,Lz in metres");
   opts->Register("source-height", &source_height_m, "r3vival: source height in metres (not published)");
   opts->Register("mic-height", &mic_height_m, "r3vival: microphone height in metres (not published)");
@@ -94,8 +77,8 @@ size_t run_rir_room_list(const RoomListCommand& c, const std::string& metadata, 
   draw.absorption_max = range[1];
   const std::vector<RoomSpec> rooms = rooms_from_setups(setups, draw);
 
-  std::string header = std::string("# made by rir-room-list --format=") + format_name(c.format) +
-                       " --absorption-range=" + c.absorption_range + " --absorption-draw=" + draw_name(draw.draw) +
+  std::string header = std::string("# made by rir-room-list --format=") + choice_name(metadata_format_choices(), c.format) +
+                       " --absorption-range=" + c.absorption_range + " --absorption-draw=" + choice_name(absorption_draw_choices(), draw.draw) +
                        " --seed=" + seed_text(draw.seed) + " from " + metadata;
   // A newline in the input's name or an option would end the comment and leave a bad line.
   for (char& ch : header) {

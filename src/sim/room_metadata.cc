@@ -251,11 +251,11 @@ std::vector<MetadataSetup> read_setup_table(const std::string& path) {
   return out;
 }
 
-AbsorptionDraw parse_absorption_draw(const std::string& name) {
-  if (name == "rir") return AbsorptionDraw::kPerRir;
-  if (name == "surface") return AbsorptionDraw::kPerSurface;
-  if (name == "surface-band") return AbsorptionDraw::kPerSurfaceBand;
-  throw Error("--absorption-draw must be rir, surface or surface-band, got '" + name + "'");
+const Choices<AbsorptionDraw>& absorption_draw_choices() {
+  static const Choices<AbsorptionDraw> choices = {{"rir", AbsorptionDraw::kPerRir},
+                                                  {"surface", AbsorptionDraw::kPerSurface},
+                                                  {"surface-band", AbsorptionDraw::kPerSurfaceBand}};
+  return choices;
 }
 
 std::vector<RoomSpec> rooms_from_setups(const std::vector<MetadataSetup>& setups, const RoomDrawOptions& options) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/room.h"
+#include "util/options.h"
 
 namespace tsrir::sim {
 
@@ -47,7 +48,7 @@ std::vector<MetadataSetup> read_but_reverbdb(const std::string& root, std::vecto
 std::vector<MetadataSetup> read_setup_table(const std::string& path);
 
 enum class AbsorptionDraw { kPerRir, kPerSurface, kPerSurfaceBand };
-AbsorptionDraw parse_absorption_draw(const std::string& name);  // "rir" | "surface" | "surface-band"
+const Choices<AbsorptionDraw>& absorption_draw_choices();  // "rir" | "surface" | "surface-band"
 
 struct RoomDrawOptions {
   double absorption_min = 0.1;   // uniform draw in [min, max], within (0, 1]

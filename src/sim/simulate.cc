@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "io/common_options.h"
 #include "io/rir_set.h"
 #include "sim/model.h"
 #include "util/error.h"
@@ -18,11 +19,10 @@ void SimulateOptions::Register(OptionsItf* opts) {
   opts->RegisterAlias("fs", "sample-rate");
   opts->Register("length", &length, "RIR length in seconds, or 'auto' (direct delay + longest band T60)");
   opts->Register("model", &model, "model components, e.g. gas (= ism+diffuse)");
-  opts->Register("seed", &seed, "random seed of the stochastic parts");
-  opts->RegisterAlias("random-seed", "seed");
-  opts->Register("num-threads", &num_threads, "threads (RIRs are rendered in parallel)");
-  opts->RegisterEnum("format", &format, {{"int16", SampleFormat::kInt16}, {"float", SampleFormat::kFloat32}},
-                     "output sample format");
+  CommonOptions(opts)
+      .seed(&seed, "the stochastic parts")
+      .threads(&num_threads, "RIRs are rendered in parallel")
+      .audio_format(&format);
 }
 
 size_t rir_length_samples(const std::string& length, double auto_length_s, double sample_rate_hz) {

@@ -34,11 +34,19 @@ double to_double(const std::string& text) {
   return v;
 }
 
-template <typename T>
-void register_integer(OptionsItf* opts, const std::string& name, T* value, const std::string& help) {
+// A spec whose value is one text: its default and what a settings file stores are the same text.
+template <typename T, typename Text>
+OptionSpec single_valued(const std::string& name, const std::string& help, T* value, Text to_text) {
   OptionSpec spec;
   spec.name = name;
   spec.help = help;
+  spec.get = [value, to_text](int digits) { return std::vector<std::string>{to_text(*value, digits)}; };
+  return spec;
+}
+
+template <typename T>
+void register_integer(OptionsItf* opts, const std::string& name, T* value, const std::string& help) {
+  OptionSpec spec = single_valued(name, help, value, [](T v, int) { return std::to_string(v); });
   spec.default_text = std::to_string(*value);
   spec.set = [value](const std::string& text) {
     *value = static_cast<T>(to_integer(text, static_cast<long long>(std::numeric_limits<T>::min()),
@@ -50,9 +58,7 @@ void register_integer(OptionsItf* opts, const std::string& name, T* value, const
 }  // namespace
 
 void OptionsItf::Register(const std::string& name, bool* value, const std::string& help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.help = help;
+  OptionSpec spec = single_valued(name, help, value, [](bool v, int) { return std::string(v ? "true" : "false"); });
   spec.default_text = *value ? "true" : "false";
   spec.is_flag = true;
   spec.set = [value](const std::string& text) {
@@ -84,9 +90,7 @@ void OptionsItf::Register(const std::string& name, unsigned* value, const std::s
 
 void OptionsItf::Register(const std::string& name, unsigned long* value, const std::string& help) {
   static_assert(sizeof(unsigned long) == sizeof(Seed), "Seed is the 64-bit unsigned long");
-  OptionSpec spec;
-  spec.name = name;
-  spec.help = help;
+  OptionSpec spec = single_valued(name, help, value, [](unsigned long v, int) { return std::to_string(v); });
   spec.default_text = std::to_string(*value);
   spec.set = [value](const std::string& text) {
     errno = 0;
@@ -109,27 +113,21 @@ void OptionsItf::Register(const std::string& name, unsigned long* value, const s
 }
 
 void OptionsItf::Register(const std::string& name, float* value, const std::string& help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.help = help;
+  OptionSpec spec = single_valued(name, help, value, [](float v, int digits) { return format_double(v, digits); });
   spec.default_text = format_double(*value, 7);
   spec.set = [value](const std::string& text) { *value = static_cast<float>(to_double(text)); };
   RegisterSpec(std::move(spec));
 }
 
 void OptionsItf::Register(const std::string& name, double* value, const std::string& help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.help = help;
+  OptionSpec spec = single_valued(name, help, value, [](double v, int digits) { return format_double(v, digits); });
   spec.default_text = format_double(*value, 10);
   spec.set = [value](const std::string& text) { *value = to_double(text); };
   RegisterSpec(std::move(spec));
 }
 
 void OptionsItf::Register(const std::string& name, std::string* value, const std::string& help) {
-  OptionSpec spec;
-  spec.name = name;
-  spec.help = help;
+  OptionSpec spec = single_valued(name, help, value, [](const std::string& v, int) { return v; });
   spec.default_text = *value;
   spec.set = [value](const std::string& text) { *value = text; };
   RegisterSpec(std::move(spec));
@@ -140,19 +138,16 @@ void OptionsItf::Register(const std::string& name, std::vector<std::string>* val
   spec.name = name;
   spec.help = help + " (may be repeated)";
   spec.repeated = true;
+  spec.get = [values](int) { return *values; };
   spec.set = [values](const std::string& text) { values->push_back(text); };
   spec.clear = [values]() { values->clear(); };
   RegisterSpec(std::move(spec));
 }
 
-std::string OptionsItf::join_choices(const std::vector<std::string>& names, const std::string& sep) {
-  std::string out;
-  for (size_t i = 0; i < names.size(); ++i) out += (i ? sep : "") + names[i];
-  return out;
-}
+void throw_unknown_choice(const std::string& expected) { throw Error("expected one of: " + expected); }
 
-void OptionsItf::throw_bad_choice(const std::string&, const std::string&, const std::vector<std::string>& names) {
-  throw Error("expected one of: " + join_choices(names, ", "));
+void throw_unknown_name(const std::string& what, const std::string& text, const std::string& expected) {
+  throw Error("unknown " + what + " '" + text + "' (expected " + expected + ")");
 }
 
 }  // namespace tsrir

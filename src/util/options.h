@@ -30,7 +30,56 @@ struct OptionSpec {
   std::function<void(const std::string&)> set;
   // Repeated options only: forgets the values stored so far.
   std::function<void()> clear;
+  // The current value as text that `set` reads back (a settings file, util/settings_file.h writes
+  // it); floating-point values with `digits` significant digits. Repeated options: one text per
+  // value. Empty for a spec made by hand without it: such an option cannot be a setting.
+  std::function<std::vector<std::string>(int digits)> get;
 };
+
+// The names of an enum's values, in the order --help lists them: the one table a choice's names
+// live in, read by RegisterEnum and by anything else that names the values.
+template <typename E>
+using Choices = std::vector<std::pair<std::string, E>>;
+
+// "a | b | c" (with `sep`).
+template <typename E>
+std::string choice_list(const Choices<E>& choices, const std::string& sep) {
+  std::string out;
+  for (size_t i = 0; i < choices.size(); ++i) out += (i ? sep : "") + choices[i].first;
+  return out;
+}
+
+[[noreturn]] void throw_unknown_choice(const std::string& expected);
+
+// The value named `text`; Error "expected one of: a, b" otherwise (the caller adds which option).
+template <typename E>
+E choice_value(const Choices<E>& choices, const std::string& text) {
+  for (const auto& c : choices) {
+    if (c.first == text) return c.second;
+  }
+  throw_unknown_choice(choice_list(choices, ", "));
+}
+
+[[noreturn]] void throw_unknown_name(const std::string& what, const std::string& text, const std::string& expected);
+
+// The same for readers other than a command line (Python keywords, model files), whose errors say
+// what the name is of: "unknown gain method 'x' (expected octave, smooth, bin)".
+template <typename E>
+E parse_choice(const Choices<E>& choices, const std::string& text, const std::string& what) {
+  for (const auto& c : choices) {
+    if (c.first == text) return c.second;
+  }
+  throw_unknown_name(what, text, choice_list(choices, ", "));
+}
+
+// The name of `value` ("" for a value the table lacks).
+template <typename E>
+std::string choice_name(const Choices<E>& choices, E value) {
+  for (const auto& c : choices) {
+    if (c.second == value) return c.first;
+  }
+  return "";
+}
 
 class OptionsItf {
  public:
@@ -52,30 +101,24 @@ class OptionsItf {
   void Register(const std::string& name, std::vector<std::string>* values, const std::string& help);
 
   // A typed choice: RegisterEnum("definition", &definition, {{"iso", Def::kIso}, {"irstats", Def::kIrStats}},
-  // "..."). Any other value is an error that lists the choices; --help shows them and the default.
+  // "..."), or a Choices table shared with other readers of the names (Python, settings files).
+  // Any other value is an error that lists the choices; --help shows them and the default.
   template <typename E>
   void RegisterEnum(const std::string& name, E* value, std::initializer_list<std::pair<const char*, E>> choices,
                     const std::string& help) {
-    std::vector<std::pair<std::string, E>> table(choices.begin(), choices.end());
-    std::vector<std::string> names;
-    std::string default_text;
-    for (const auto& c : table) {
-      names.push_back(c.first);
-      if (c.second == *value) default_text = c.first;
-    }
+    RegisterEnum(name, value, Choices<E>(choices.begin(), choices.end()), help);
+  }
+  template <typename E>
+  void RegisterEnum(const std::string& name, E* value, const Choices<E>& choices, const std::string& help) {
     OptionSpec spec;
     spec.name = name;
-    spec.help = help + " (" + join_choices(names, " | ") + ")";
-    spec.default_text = default_text;
-    spec.set = [table, names, name, value](const std::string& text) {
-      for (const auto& c : table) {
-        if (c.first == text) {
-          *value = c.second;
-          return;
-        }
-      }
-      throw_bad_choice(name, text, names);
+    spec.help = help + " (" + choice_list(choices, " | ") + ")";
+    spec.default_text = choice_name(choices, *value);
+    spec.get = [choices, value](int) {
+      const std::string text = choice_name(choices, *value);
+      return text.empty() ? std::vector<std::string>{} : std::vector<std::string>{text};
     };
+    spec.set = [choices, value](const std::string& text) { *value = choice_value(choices, text); };
     RegisterSpec(std::move(spec));
   }
 
@@ -86,10 +129,6 @@ class OptionsItf {
   // The one entry point an implementation provides; the typed Register calls above end here.
   virtual void RegisterSpec(OptionSpec spec) = 0;
 
- private:
-  static std::string join_choices(const std::vector<std::string>& names, const std::string& sep);
-  [[noreturn]] static void throw_bad_choice(const std::string& name, const std::string& text,
-                                            const std::vector<std::string>& names);
 };
 
 // Registers options under a common prefix: PrefixedOptions p("eq", opts); x.Register(&p) makes

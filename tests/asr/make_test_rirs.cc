@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < count; ++i) {
     const std::string id = "gen" + std::to_string(seed) + "-" + std::to_string(i);
     Rng rng = Rng::for_item(seed, id);
-    testing::TrueRoom room;
+    testdata::TrueRoom room;
     room.size_m = {rng.uniform(5.0, 10.0), rng.uniform(4.0, 8.0), rng.uniform(2.5, 3.5)};
     const double a = rng.uniform(0.1, 0.25);
     for (auto& surface : room.absorption) surface.fill(a);
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
         break;
       }
     }
-    const Signal h = testing::generate_measured_rir(room, kFs, size_t(kFs), rng);
+    const Signal h = testdata::generate_measured_rir(room, kFs, size_t(kFs), rng);
     AudioWriteOptions write;
     write.format = SampleFormat::kFloat32;
     const std::string path = std::filesystem::absolute(out + "/" + id + ".wav").string();

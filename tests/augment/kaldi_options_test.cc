@@ -6,6 +6,7 @@
 
 #include "augment/kaldi_options.h"
 #include "reference_model.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace {
@@ -74,7 +75,7 @@ TEST(KaldiOptions, OptionsEndAtFirstPositional) {
 }
 
 TEST(KaldiOptions, ConfigFileThenCommandLine) {
-  const std::string dir = reftest::make_temp_dir("config");
+  const std::string dir = tsrir_test::make_scratch_dir("config").string();
   {
     std::ofstream f(dir + "/c.conf");
     f << "# comment\n--volume=2.5  # trailing comment\n\n--impulse-response=from_config.wav\n";

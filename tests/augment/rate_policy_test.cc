@@ -16,6 +16,7 @@
 
 #include "io/audio_io.h"
 #include "reference_model.h"
+#include "test_support.h"
 
 namespace fs = std::filesystem;
 
@@ -45,7 +46,7 @@ class RatePolicy : public ::testing::Test {
   std::string log;
 
   void SetUp() override {
-    dir = reftest::make_temp_dir("rate_policy");
+    dir = tsrir_test::make_scratch_dir("rate_policy").string();
     log = dir + "/log";
     reftest::write_wav(dir + "/a16.wav", {tones(16000)}, 16000, 16);
     reftest::write_wav(dir + "/b48.wav", {tones(48000)}, 48000, 16);

@@ -165,12 +165,4 @@ void write_wav(const std::string& path, const std::vector<Vec>& channels, double
   }
 }
 
-std::string make_temp_dir(const std::string& tag) {
-  std::string tmpl = "/tmp/tsrir_augment_" + tag + "_XXXXXX";
-  std::vector<char> buf(tmpl.begin(), tmpl.end());
-  buf.push_back('\0');
-  if (!mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed");
-  return buf.data();
-}
-
 }  // namespace reftest

@@ -52,6 +52,4 @@ Result wav_reverberate(const Vec& x, double fs, const Vec& rir, const std::vecto
 // Minimal RIFF/WAVE writer (PCM 16/24-bit or IEEE float 32-bit), independent of libsndfile.
 void write_wav(const std::string& path, const std::vector<Vec>& channels, double fs, int bits, bool is_float = false);
 
-std::string make_temp_dir(const std::string& tag);
-
 }  // namespace reftest

@@ -14,6 +14,7 @@
 #include "io/rxfile.h"
 #include "io/shell.h"
 #include "reference_model.h"
+#include "test_support.h"
 #include "util/strings.h"
 
 namespace fs = std::filesystem;
@@ -53,7 +54,7 @@ class ReverberateData : public ::testing::Test {
  protected:
   std::string dir;
   void SetUp() override {
-    dir = reftest::make_temp_dir("rvbdata");
+    dir = tsrir_test::make_scratch_dir("rvbdata").string();
     for (const char* sub : {"/audio", "/rirs", "/noise", "/lists"}) fs::create_directories(dir + sub);
     std::string wav_scp, utt2spk, text;
     int k = 0;

@@ -12,6 +12,7 @@
 #include "augment/reverberate_stream.h"
 #include "io/audio_io.h"
 #include "reference_model.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -36,7 +37,7 @@ struct Case {
 class ReverberateStream : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = reftest::make_temp_dir("stream");
+    dir_ = tsrir_test::make_scratch_dir("stream").string();
     const Vec x = reftest::quantise16(reftest::speech_like(81617, kFs, 41));  // 5.1 s, odd length
     const Vec x2 = reftest::quantise16(reftest::speech_like(81617, kFs, 42));
     reftest::write_wav(dir_ + "/mono.wav", {x}, kFs, 16);

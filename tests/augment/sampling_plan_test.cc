@@ -16,6 +16,7 @@
 #include "augment/noise_type.h"
 #include "augment/sampling.h"
 #include "reference_model.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace {
@@ -132,7 +133,7 @@ tsrir::AugmentSources two_rooms() {
   psb.probability = 0.5;
   tsrir::NoiseChoice psf = psb;
   psf.id = "psf";
-  psf.bg_fg_type = "foreground";
+  psf.bg_fg_type = tsrir::BgFgType::kForeground;
   psf.rxfilename = "psf.wav";
   s.noises = {iso, psb, psf};
   return s;
@@ -190,7 +191,7 @@ TEST(Plan, KaldiFrequenciesOverManyRecordings) {
       ++ps;
       ASSERT_GE(n.rir, 0);  // a point source through an RIR of the same room
       EXPECT_EQ(sources.rirs[n.rir].room_id, p.room);
-      if (choice.bg_fg_type == "foreground") {
+      if (choice.bg_fg_type == tsrir::BgFgType::kForeground) {
         ++fg;
         EXPECT_EQ(n.extend_to_s, 0.0);  // added once, not extended
         EXPECT_GE(n.start_time_s, 0.0);
@@ -374,7 +375,7 @@ TEST(Plan, PipesInKaldisForm) {
 class Lists : public ::testing::Test {
  protected:
   std::string dir;
-  void SetUp() override { dir = reftest::make_temp_dir("lists"); }
+  void SetUp() override { dir = tsrir_test::make_scratch_dir("lists").string(); }
   std::string put(const std::string& name, const std::string& text) {
     std::ofstream(dir + "/" + name) << text;
     return dir + "/" + name;

@@ -12,6 +12,7 @@
 
 #include "io/audio_io.h"
 #include "reference_model.h"
+#include "test_support.h"
 
 namespace {
 
@@ -26,7 +27,7 @@ int run(const std::string& command) {
 class WavReverberateCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new std::string(reftest::make_temp_dir("wavrvb"));
+    dir_ = new std::string(tsrir_test::make_scratch_dir("wavrvb").string());
     const double fs = 16000;
     x_ = new Vec(reftest::quantise16(reftest::speech_like(16000, fs, 21)));
     h_ = new Vec(reftest::synthetic_rir(4000, fs, 90, 0.5, 22));

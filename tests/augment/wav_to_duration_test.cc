@@ -10,6 +10,7 @@
 
 #include "augment/wav_duration.h"
 #include "reference_model.h"
+#include "test_support.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -32,7 +33,7 @@ class WavToDuration : public ::testing::Test {
  protected:
   std::string dir;
   void SetUp() override {
-    dir = reftest::make_temp_dir("w2d");
+    dir = tsrir_test::make_scratch_dir("w2d").string();
     reftest::write_wav(dir + "/a.wav", {reftest::Vec(19744, 0.1)}, 16000, 16);        // 1.234 s
     reftest::write_wav(dir + "/b f.wav", {reftest::Vec(4000, 0.1)}, 8000, 32, true);  // 0.5 s float
     reftest::write_wav(dir + "/c.wav", {reftest::Vec(44100 * 3, 0.1), reftest::Vec(44100 * 3, 0.0)}, 44100, 24);

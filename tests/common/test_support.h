@@ -58,6 +58,7 @@ class ScratchDir {
     return path(name);
   }
   std::string read(const std::string& name) const { return slurp(path(name)); }
+  bool exists(const std::string& name) const { return std::filesystem::exists(path(name)); }
 
  private:
   std::filesystem::path dir_;

@@ -10,7 +10,7 @@
 #include "hidden_effects.h"
 #include "io/audio_io.h"
 #include "sim/room_list.h"
-#include "../io/test_dir.h"
+#include "test_support.h"
 
 namespace tsrir {
 namespace {
@@ -28,12 +28,12 @@ int run(const std::string& command, std::string* output = nullptr) {
   return WEXITSTATUS(status);
 }
 
-class DiagnoseCli : public TempDirTest {
+class DiagnoseCli : public tsrir_test::TempDirTest {
  protected:
   // A small hidden-offset set written as files: room list + scp of float WAVs.
   void write_set(size_t count) {
-    const auto rooms = testing::make_test_rooms(count, 41);
-    const auto set = testing::make_hidden_set(rooms, {"time_offset"}, 41);
+    const auto rooms = testdata::make_test_rooms(count, 41);
+    const auto set = testdata::make_hidden_set(rooms, {"time_offset"}, 41);
     std::string list, scp;
     for (size_t i = 0; i < rooms.size(); ++i) {
       list += sim::format_room_list_line(rooms[i]) + "\n";

@@ -29,14 +29,14 @@ std::string metric_for(const std::string& effect) {
 }
 
 struct Case {
-  Case(std::string n, std::set<std::string> h, uint64_t s, testing::HiddenOptions o = testing::HiddenOptions(),
+  Case(std::string n, std::set<std::string> h, uint64_t s, testdata::HiddenOptions o = testdata::HiddenOptions(),
        std::set<std::string> u = std::set<std::string>(), std::set<std::string> a = std::set<std::string>())
       : name(std::move(n)), hidden(std::move(h)), seed(s), options(std::move(o)), unasserted(std::move(u)),
         also_expected(std::move(a)) {}
   std::string name;
   std::set<std::string> hidden;
   uint64_t seed;
-  testing::HiddenOptions options;
+  testdata::HiddenOptions options;
   // Effects whose detection is not asserted either way (reported): the transducer's
   // low-frequency roll-off, which the short direct-sound window cannot resolve.
   std::set<std::string> unasserted;
@@ -64,7 +64,7 @@ double parameter(const diagnose::Finding& f, const std::string& name) {
 }
 
 // Recovery of the hidden parameters by the detected effect's fit.
-void check_recovery(const diagnose::Finding& f, const testing::HiddenSet& set, const Case& c) {
+void check_recovery(const diagnose::Finding& f, const testdata::HiddenSet& set, const Case& c) {
   const auto& truth = set.truth;
   if (f.effect == "time_offset" && truth.count("latency_ms")) {
     // Onsets are located to a fraction of a sample; 0.15 ms = 2.4 samples at 16 kHz.
@@ -85,9 +85,9 @@ void check_recovery(const diagnose::Finding& f, const testing::HiddenSet& set, c
     const double t_stated = set.stated.front().temperature_c;
     for (double f_hz : {2000.0, 4000.0}) {
       const double fitted = parameter(f, "scale") *
-                            testing::test_air_attenuation_db_per_m(f_hz, t_stated, parameter(f, "humidity_percent"));
+                            testdata::test_air_attenuation_db_per_m(f_hz, t_stated, parameter(f, "humidity_percent"));
       const double real =
-          testing::test_air_attenuation_db_per_m(f_hz, truth.at("temperature_c"), truth.at("humidity_percent"));
+          testdata::test_air_attenuation_db_per_m(f_hz, truth.at("temperature_c"), truth.at("humidity_percent"));
       EXPECT_NEAR(fitted / real, 1.0, 0.35) << c.name << " at " << f_hz << " Hz: fitted " << fitted << " dB/m, true " << real;
     }
   }
@@ -161,8 +161,8 @@ void check_recovery(const diagnose::Finding& f, const testing::HiddenSet& set, c
 TEST_P(HiddenEffectTest, DetectsExactlyTheHiddenEffectsAndTheExtensionHelps) {
   const Case& c = GetParam();
   const uint64_t seed = c.seed + 100 * seed_offset();
-  const std::vector<sim::RoomSpec> rooms = testing::make_test_rooms(kRirsPerSet, 77 + seed);
-  const testing::HiddenSet set = testing::make_hidden_set(rooms, c.hidden, seed, 16000.0, 1.0, c.options);
+  const std::vector<sim::RoomSpec> rooms = testdata::make_test_rooms(kRirsPerSet, 77 + seed);
+  const testdata::HiddenSet set = testdata::make_hidden_set(rooms, c.hidden, seed, 16000.0, 1.0, c.options);
   diagnose::DiagnoseOptions options;
   options.num_threads = 2;
   const diagnose::Diagnosis d = diagnose::diagnose_set(set.stated, set.measured, options);
@@ -209,41 +209,41 @@ TEST_P(HiddenEffectTest, DetectsExactlyTheHiddenEffectsAndTheExtensionHelps) {
 
 std::string case_name(const ::testing::TestParamInfo<Case>& info) { return info.param.name; }
 
-testing::HiddenOptions rolloff(double hz) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions rolloff(double hz) {
+  testdata::HiddenOptions o;
   o.highpass_hz = hz;
   return o;
 }
-testing::HiddenOptions position_error(double m) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions position_error(double m) {
+  testdata::HiddenOptions o;
   o.position_error_m = m;
   return o;
 }
-testing::HiddenOptions size_error(double e) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions size_error(double e) {
+  testdata::HiddenOptions o;
   o.size_error = e;
   return o;
 }
-testing::HiddenOptions dense_modes(double decay_factor = 0.0) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions dense_modes(double decay_factor = 0.0) {
+  testdata::HiddenOptions o;
   o.dense_modes = true;
   if (decay_factor > 0.0) o.fixed["modal_decay_factor"] = decay_factor;
   return o;
 }
-testing::HiddenOptions silent_tail(double seconds) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions silent_tail(double seconds) {
+  testdata::HiddenOptions o;
   o.silent_tail_s = seconds;
   return o;
 }
-testing::HiddenOptions pre_aligned(double ms) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions pre_aligned(double ms) {
+  testdata::HiddenOptions o;
   o.pre_align_ms = ms;
   return o;
 }
 // A long decay: every band's absorption 0.6x the stated (T60 ~1.6x): the tail is still decaying
 // at the end of the file, which must not read as a noise floor.
-testing::HiddenOptions long_decay() {
-  testing::HiddenOptions o;
+testdata::HiddenOptions long_decay() {
+  testdata::HiddenOptions o;
   for (int b = 0; b < kNumOctaveBands; ++b) o.fixed["absorption_factor_" + std::to_string(b)] = 0.6;
   return o;
 }
@@ -300,8 +300,8 @@ class OutOfCatalogTest : public ::testing::TestWithParam<Case> {};
 TEST_P(OutOfCatalogTest, NamesNothingOrReportsUnexplainedNeverAWrongEffectWithAGain) {
   const Case& c = GetParam();
   const uint64_t seed = c.seed + 100 * seed_offset();
-  const std::vector<sim::RoomSpec> rooms = testing::make_test_rooms(kRirsPerSet, 77 + seed);
-  const testing::HiddenSet set = testing::make_hidden_set(rooms, {}, seed, 16000.0, 1.0, c.options);
+  const std::vector<sim::RoomSpec> rooms = testdata::make_test_rooms(kRirsPerSet, 77 + seed);
+  const testdata::HiddenSet set = testdata::make_hidden_set(rooms, {}, seed, 16000.0, 1.0, c.options);
   diagnose::DiagnoseOptions options;
   options.num_threads = 2;
   const diagnose::Diagnosis d = diagnose::diagnose_set(set.stated, set.measured, options);
@@ -319,8 +319,8 @@ TEST_P(OutOfCatalogTest, NamesNothingOrReportsUnexplainedNeverAWrongEffectWithAG
   }
 }
 
-testing::HiddenOptions out_of_catalog(bool coupled, bool flutter, bool non_shoebox) {
-  testing::HiddenOptions o;
+testdata::HiddenOptions out_of_catalog(bool coupled, bool flutter, bool non_shoebox) {
+  testdata::HiddenOptions o;
   o.coupled_room = coupled;
   o.flutter = flutter;
   o.non_shoebox = non_shoebox;

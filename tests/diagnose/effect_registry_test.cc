@@ -189,8 +189,8 @@ TEST(HeldOutCheck, AFitThatMakesAMetricWorseIsReportedAndTakenIntoAccount) {
   auto e = std::make_unique<WrongLatency>();
   e->id = "wrong_latency";
   r.add(std::move(e));
-  const auto rooms = testing::make_test_rooms(16, 81);
-  const testing::HiddenSet set = testing::make_hidden_set(rooms, {}, 4);
+  const auto rooms = testdata::make_test_rooms(16, 81);
+  const testdata::HiddenSet set = testdata::make_hidden_set(rooms, {}, 4);
   DiagnoseOptions options;
   const Diagnosis d = diagnose_set(set.stated, set.measured, options, {}, r);
   ASSERT_EQ(d.findings.size(), 1u);

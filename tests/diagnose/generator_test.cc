@@ -2,6 +2,7 @@
 // and its out-of-catalog and modal parts against what they are meant to show.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dsp/fft.h"
@@ -21,14 +22,14 @@ double energy(const std::vector<float>& x, size_t a, size_t b) {
 // The convex-room image method (mirroring across planes with Borish's path check) on a rectangular
 // floor is the shoebox's own image lattice: the two responses agree to float precision.
 TEST(MeasuredRirGenerator, ConvexImagesOfARectangleAreTheShoeboxImages) {
-  const std::vector<sim::RoomSpec> rooms = testing::make_test_rooms(3, 5);
+  const std::vector<sim::RoomSpec> rooms = testdata::make_test_rooms(3, 5);
   for (const sim::RoomSpec& stated : rooms) {
-    testing::TrueRoom box = testing::true_room_from(stated);
-    testing::TrueRoom prism = box;
+    testdata::TrueRoom box = testdata::true_room_from(stated);
+    testdata::TrueRoom prism = box;
     prism.floor_polygon = {{0.0, 0.0}, {box.size_m[0], 0.0}, {box.size_m[0], box.size_m[1]}, {0.0, box.size_m[1]}};
     Rng r1(9), r2(9);
-    const Signal a = testing::generate_measured_rir(box, 16000.0, 16000, r1);
-    const Signal b = testing::generate_measured_rir(prism, 16000.0, 16000, r2);
+    const Signal a = testdata::generate_measured_rir(box, 16000.0, 16000, r1);
+    const Signal b = testdata::generate_measured_rir(prism, 16000.0, 16000, r2);
     double diff = 0.0;
     for (size_t i = 0; i < a.size(); ++i) diff += std::pow(double(a.samples[i]) - b.samples[i], 2);
     EXPECT_LT(diff, 1e-8 * energy(a.samples, 0, a.size())) << stated.rir_id;
@@ -37,22 +38,22 @@ TEST(MeasuredRirGenerator, ConvexImagesOfARectangleAreTheShoeboxImages) {
 
 // A splayed room has images the shoebox does not: its first side-wall reflections arrive elsewhere.
 TEST(MeasuredRirGenerator, SplayedWallsMoveTheFirstReflections) {
-  testing::TrueRoom box = testing::true_room_from(testing::make_test_rooms(1, 5).front());
-  testing::TrueRoom splayed = box;
+  testdata::TrueRoom box = testdata::true_room_from(testdata::make_test_rooms(1, 5).front());
+  testdata::TrueRoom splayed = box;
   splayed.floor_polygon = {{0.0, 0.0}, {box.size_m[0], 0.0}, {box.size_m[0] + 1.0, box.size_m[1]}, {-1.0, box.size_m[1]}};
-  const auto images_box = testing::convex_room_images(
+  const auto images_box = testdata::convex_room_images(
       [&] {
-        testing::TrueRoom r = box;
+        testdata::TrueRoom r = box;
         r.floor_polygon = {{0.0, 0.0}, {box.size_m[0], 0.0}, {box.size_m[0], box.size_m[1]}, {0.0, box.size_m[1]}};
         return r;
       }(),
       15.0);
-  const auto images_splayed = testing::convex_room_images(splayed, 15.0);
+  const auto images_splayed = testdata::convex_room_images(splayed, 15.0);
   ASSERT_FALSE(images_box.empty());
   EXPECT_EQ(images_box.front().surfaces.size(), 0u);  // the direct sound first
   // First-order images: six in the box, six in the splayed prism, at other distances for the side
   // walls (and the same for floor and ceiling).
-  auto first_order = [](const std::vector<testing::ConvexImage>& im) {
+  auto first_order = [](const std::vector<testdata::ConvexImage>& im) {
     std::vector<double> d;
     for (const auto& i : im) {
       if (i.surfaces.size() == 1) d.push_back(i.distance_m);
@@ -70,14 +71,14 @@ TEST(MeasuredRirGenerator, SplayedWallsMoveTheFirstReflections) {
 
 // Flutter: the late 1 kHz-and-up envelope repeats every 2 Lx / c.
 TEST(MeasuredRirGenerator, FlutterRepeatsAtTheWallPairsRoundTrip) {
-  testing::TrueRoom room = testing::true_room_from(testing::make_test_rooms(1, 5).front());
+  testdata::TrueRoom room = testdata::true_room_from(testdata::make_test_rooms(1, 5).front());
   room.flutter_level_db = -6.0;
   room.flutter_trip_loss_db = 0.5;
   Rng rng(3);
-  const Signal s = testing::generate_measured_rir(room, 16000.0, 16000, rng);
+  const Signal s = testdata::generate_measured_rir(room, 16000.0, 16000, rng);
   const std::vector<float> hp = [&] {
     std::vector<float> x = s.samples;
-    for (int k = 0; k < 2; ++k) testing::apply_test_biquad(testing::test_high_pass(1000.0, std::sqrt(0.5), 16000.0), x);
+    for (int k = 0; k < 2; ++k) testdata::apply_test_biquad(testdata::test_high_pass(1000.0, std::sqrt(0.5), 16000.0), x);
     return x;
   }();
   // Energy envelope of 0.2-0.7 s in 1 ms bins; its autocorrelation peaks at the round trip.
@@ -100,12 +101,12 @@ TEST(MeasuredRirGenerator, FlutterRepeatsAtTheWallPairsRoundTrip) {
 // is nearly unchanged and the late one (600-700 ms) much slower (broadband drops, whose own bands
 // mix into a curve of their own).
 TEST(MeasuredRirGenerator, CoupledVolumeMakesADoubleSlope) {
-  testing::TrueRoom room = testing::true_room_from(testing::make_test_rooms(1, 5).front());
+  testdata::TrueRoom room = testdata::true_room_from(testdata::make_test_rooms(1, 5).front());
   Rng r1(4), r2(4);
-  const Signal single = testing::generate_measured_rir(room, 16000.0, 16000, r1);
+  const Signal single = testdata::generate_measured_rir(room, 16000.0, 16000, r1);
   room.coupled_level_db = -10.0;
   room.coupled_decay_factor = 3.0;
-  const Signal coupled = testing::generate_measured_rir(room, 16000.0, 16000, r2);
+  const Signal coupled = testdata::generate_measured_rir(room, 16000.0, 16000, r2);
   // Level drop per 100 ms early (100-200 ms) and late (600-700 ms).
   auto drop = [&](const Signal& s, size_t a) { return 10.0 * std::log10(energy(s.samples, a, a + 1600) / energy(s.samples, a + 1600, a + 3200)); };
   EXPECT_GT(drop(coupled, 1600), 0.7 * drop(single, 1600));
@@ -115,12 +116,12 @@ TEST(MeasuredRirGenerator, CoupledVolumeMakesADoubleSlope) {
 // The dense modal field: every mode up to past the Schroeder frequency, so it raises the energy up
 // to there, not beyond; and the modes persist where the diffuse field does not.
 TEST(MeasuredRirGenerator, DenseModalFieldCoversTheModalRange) {
-  testing::TrueRoom room = testing::true_room_from(testing::make_test_rooms(1, 5).front());
+  testdata::TrueRoom room = testdata::true_room_from(testdata::make_test_rooms(1, 5).front());
   Rng r1(6), r2(6);
-  const Signal plain = testing::generate_measured_rir(room, 16000.0, 16000, r1);
+  const Signal plain = testdata::generate_measured_rir(room, 16000.0, 16000, r1);
   room.modal_gain_db = 0.0;
-  const Signal modal = testing::generate_measured_rir(room, 16000.0, 16000, r2);
-  const double schroeder = testing::test_schroeder_hz(room);
+  const Signal modal = testdata::generate_measured_rir(room, 16000.0, 16000, r2);
+  const double schroeder = testdata::test_schroeder_hz(room);
   auto band = [](const Signal& s, double lo, double hi) {
     const std::vector<double> p = power_spectrum(s.samples, 32768);
     double e = 0.0;

@@ -8,7 +8,7 @@
 #include "measured_rir_generator.h"
 #include "util/rng.h"
 
-namespace tsrir::testing {
+namespace tsrir::testdata {
 namespace {
 
 // Draws `name` from [lo, hi) unless the options fix it; the draw is made either way, so fixing
@@ -326,4 +326,4 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
   return set;
 }
 
-}  // namespace tsrir::testing
+}  // namespace tsrir::testdata

@@ -31,7 +31,7 @@
 #include "io/signal.h"
 #include "sim/room.h"
 
-namespace tsrir::testing {
+namespace tsrir::testdata {
 
 struct HiddenSet {
   std::vector<sim::RoomSpec> stated;       // what the room list says
@@ -82,4 +82,4 @@ HiddenSet make_hidden_set(const std::vector<sim::RoomSpec>& rooms, const std::se
                           uint64_t seed, double sample_rate_hz = 16000.0, double length_s = 1.0,
                           const HiddenOptions& options = {});
 
-}  // namespace tsrir::testing
+}  // namespace tsrir::testdata

@@ -6,7 +6,7 @@
 
 #include "dsp/fft.h"
 
-namespace tsrir::testing {
+namespace tsrir::testdata {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -587,4 +587,4 @@ double test_cascade_octave_gain_db(const std::vector<TestBiquad>& chain, double 
   return 10.0 * std::log10(e);
 }
 
-}  // namespace tsrir::testing
+}  // namespace tsrir::testdata

@@ -54,7 +54,7 @@
 #include "sim/room.h"
 #include "util/rng.h"
 
-namespace tsrir::testing {
+namespace tsrir::testdata {
 
 // The physical room a "measurement" was taken in (the room list may state something else).
 struct TrueRoom {
@@ -139,4 +139,4 @@ void apply_test_biquad(const TestBiquad& f, std::vector<float>& x);
 // Power gain (dB) of a cascade averaged over the octave around centre_hz.
 double test_cascade_octave_gain_db(const std::vector<TestBiquad>& chain, double centre_hz, double fs);
 
-}  // namespace tsrir::testing
+}  // namespace tsrir::testdata

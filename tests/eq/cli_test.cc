@@ -23,7 +23,7 @@ class RirEqCli : public ::testing::Test {
   int run(const std::string& args, std::string* output = nullptr) {
     const std::string log = dir_.path("out.log");
     const int status = std::system((kRirEq + " " + args + " >" + log + " 2>&1").c_str());
-    if (output) *output = dir_.read_text("out.log");
+    if (output) *output = dir_.read("out.log");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
   // `count` decaying-noise RIRs at `fs` in <dir>/<name>/, listed in <dir>/<name>.scp.
@@ -40,7 +40,7 @@ class RirEqCli : public ::testing::Test {
     }
     return dir_.path(name + ".scp");
   }
-  eqtest::ScratchDir dir_;
+  tsrir_test::ScratchDir dir_;
 };
 
 }  // namespace
@@ -68,8 +68,8 @@ TEST_F(RirEqCli, FitApplyWritesACompleteSetDeterministically) {
   ASSERT_EQ(run("apply --seed=4 " + dir_.path("eq.model") + " " + sim + " " + dir_.path("eq1"), &out), 0) << out;
   EXPECT_NE(out.find("achieved"), std::string::npos);
   ASSERT_EQ(run("apply --seed=4 --num-threads=2 " + dir_.path("eq.model") + " " + sim + " " + dir_.path("eq2"), &out), 0);
-  const std::vector<RirRef> in = read_rir_refs(sim), a = read_rir_refs(dir_.path("eq1/rir.scp")),
-                            b = read_rir_refs(dir_.path("eq2/rir_list"));
+  const std::vector<RirRef> in = read_rir_refs(sim, nullptr), a = read_rir_refs(dir_.path("eq1/rir.scp"), nullptr),
+                            b = read_rir_refs(dir_.path("eq2/rir_list"), nullptr);
   ASSERT_EQ(a.size(), in.size());
   ASSERT_EQ(b.size(), in.size());
   for (size_t i = 0; i < in.size(); ++i) {
@@ -84,14 +84,14 @@ TEST_F(RirEqCli, FitApplyWritesACompleteSetDeterministically) {
             0)
       << out;
   EXPECT_TRUE(dir_.exists("eq3.model"));
-  EXPECT_EQ(load_rir(read_rir_refs(dir_.path("eq3/rir.scp"))[0]).samples, load_rir(a[0]).samples);
+  EXPECT_EQ(load_rir(read_rir_refs(dir_.path("eq3/rir.scp"), nullptr)[0]).samples, load_rir(a[0]).samples);
   // gains mode: one line per RIR after a comment line.
   ASSERT_EQ(run("gains " + dir_.path("eq1/rir.scp") + " " + dir_.path("gains.txt"), &out), 0) << out;
-  const std::string table = dir_.read_text("gains.txt");
+  const std::string table = dir_.read("gains.txt");
   EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 7);
   // A report with before / target / achieved per RIR.
   ASSERT_EQ(run("apply --report=" + dir_.path("report.txt") + " " + dir_.path("eq.model") + " " + sim + " " + dir_.path("eq4"), &out), 0);
-  EXPECT_NE(dir_.read_text("report.txt").find("sim3 before"), std::string::npos);
+  EXPECT_NE(dir_.read("report.txt").find("sim3 before"), std::string::npos);
 }
 
 TEST_F(RirEqCli, FewerRealRirsThanModelParameters) {
@@ -113,7 +113,7 @@ TEST_F(RirEqCli, SampleRates) {
   // Mixed rates in one real set: resampled to --sample-rate (logged), or an error with 0.
   {
     std::ofstream mixed(dir_.path("mixed.scp"));
-    mixed << dir_.read_text("r16.scp") << dir_.read_text("r48.scp");
+    mixed << dir_.read("r16.scp") << dir_.read("r48.scp");
   }
   ASSERT_EQ(run("fit " + dir_.path("mixed.scp") + " " + dir_.path("eq.model"), &out), 0) << out;
   EXPECT_NE(out.find("resampled 16 of 32 RIRs"), std::string::npos) << out;
@@ -125,7 +125,7 @@ TEST_F(RirEqCli, SampleRates) {
   EXPECT_NE(out.find("--resample"), std::string::npos) << out;
   EXPECT_FALSE(dir_.exists("out48"));
   ASSERT_EQ(run("apply --resample " + dir_.path("eq.model") + " " + real48 + " " + dir_.path("out48"), &out), 0) << out;
-  EXPECT_EQ(load_rir(read_rir_refs(dir_.path("out48/rir.scp"))[0]).sample_rate_hz, 16000);
+  EXPECT_EQ(load_rir(read_rir_refs(dir_.path("out48/rir.scp"), nullptr)[0]).sample_rate_hz, 16000);
   // A rate whose Nyquist lies below 8 kHz is refused.
   const std::string real8 = make_set("r8", 16, 8000, 7);
   EXPECT_NE(run("fit --sample-rate=0 " + real8 + " " + dir_.path("eq8.model"), &out), 0);
@@ -146,17 +146,17 @@ TEST_F(RirEqCli, SilentRirsAndBadModelsLeaveNothingBehind) {
   // A silent RIR in the input set: error, and an existing output dir stays as it was.
   const std::string sim = make_set("sim", 4, 16000, 10);
   ASSERT_EQ(run("apply " + dir_.path("eq.model") + " " + sim + " " + dir_.path("out"), &out), 0) << out;
-  const std::string before = dir_.read_text("out/rir.scp");
+  const std::string before = dir_.read("out/rir.scp");
   const std::string silent_sim = make_set("ssim", 4, 16000, 11, 2);
   EXPECT_NE(run("apply " + dir_.path("eq.model") + " " + silent_sim + " " + dir_.path("out"), &out), 0);
   EXPECT_NE(out.find("ssim2"), std::string::npos) << out;
-  EXPECT_EQ(dir_.read_text("out/rir.scp"), before);
+  EXPECT_EQ(dir_.read("out/rir.scp"), before);
   // Model files that do not parse: file:line in the message, no output.
-  dir_.write_text("broken.model", dir_.read_text("eq.model").substr(0, dir_.read_text("eq.model").size() / 2));
+  dir_.write("broken.model", dir_.read("eq.model").substr(0, dir_.read("eq.model").size() / 2));
   EXPECT_NE(run("apply " + dir_.path("broken.model") + " " + sim + " " + dir_.path("out2"), &out), 0);
   EXPECT_NE(out.find(dir_.path("broken.model") + ":"), std::string::npos) << out;
   EXPECT_FALSE(dir_.exists("out2"));
-  dir_.write_text("garbage.model", "hello world\n");
+  dir_.write("garbage.model", "hello world\n");
   EXPECT_NE(run("apply " + dir_.path("garbage.model") + " " + sim + " " + dir_.path("out2"), &out), 0);
   EXPECT_NE(out.find("garbage.model:1:"), std::string::npos) << out;
   EXPECT_NE(run("apply " + dir_.path("missing.model") + " " + sim + " " + dir_.path("out2"), &out), 0);

@@ -141,7 +141,7 @@ TEST(GaussianMixture, RefusesFewerVectorsThanParameters) {
 }
 
 TEST(EqModelFile, RoundTripIsExact) {
-  eqtest::ScratchDir dir;
+  tsrir_test::ScratchDir dir;
   EqModel m;
   m.sample_rate_hz = 16000;
   m.gain_method = GainMethod::kSmooth;

@@ -1,4 +1,4 @@
-// Test-side helpers for the EQ tests: scratch directories and RIR-like signals made without the
+// Test-side helpers for the EQ tests: RIR-like signals made without the
 // EQ code (exponentially decaying noise with a direct impulse; RBJ-cookbook biquads), so hidden
 // effects are generated independently of what is tested.
 #pragma once
@@ -13,36 +13,10 @@
 #include <vector>
 
 #include "io/signal.h"
+#include "test_support.h"
 #include "util/rng.h"
 
 namespace eqtest {
-
-class ScratchDir {
- public:
-  ScratchDir() : ScratchDir(current_test_name()) {}
-  explicit ScratchDir(const std::string& name) {
-    dir_ = std::filesystem::temp_directory_path() / ("tsrir_eq_" + name + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write_text(const std::string& name, const std::string& text) const {
-    std::ofstream(path(name), std::ios::binary) << text;
-  }
-  std::string read_text(const std::string& name) const {
-    std::ifstream in(path(name), std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
-  bool exists(const std::string& name) const { return std::filesystem::exists(path(name)); }
-
- private:
-  static std::string current_test_name() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    return info ? std::string(info->test_suite_name()) + "_" + info->name() : "suite";
-  }
-  std::filesystem::path dir_;
-};
 
 // Decaying Gaussian noise (energy envelope exp(-13.8 t / T60)) starting 1 ms after a direct
 // impulse at `direct_index` whose energy is `drr_db` above the reverberant energy.

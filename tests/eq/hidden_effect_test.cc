@@ -70,7 +70,7 @@ void write_set(const std::vector<Signal>& rirs, const std::string& dir) {
 
 std::vector<Signal> load_set(const std::string& scp) {
   std::vector<Signal> out;
-  for (const RirRef& ref : read_rir_refs(scp)) out.push_back(load_rir(ref));
+  for (const RirRef& ref : read_rir_refs(scp, nullptr)) out.push_back(load_rir(ref));
   return out;
 }
 
@@ -99,10 +99,10 @@ struct Sets {
 class HiddenEffect : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new eqtest::ScratchDir("HiddenEffect");
+    dir_ = new tsrir_test::ScratchDir("HiddenEffect");
     sets_.log = dir_->path("log.txt");
-    dir_->write_text("sim_rooms.txt", room_list("sim", 60, 1));
-    dir_->write_text("real_rooms.txt", room_list("real", 80, 2));
+    dir_->write("sim_rooms.txt", room_list("sim", 60, 1));
+    dir_->write("real_rooms.txt", room_list("real", 80, 2));
     ASSERT_EQ(0, run(kBin + "/rir-simulate --fs=16000 --length=1.0 --format=float --seed=1 " +
                          dir_->path("sim_rooms.txt") + " " + dir_->path("sim"), sets_.log));
     ASSERT_EQ(0, run(kBin + "/rir-simulate --fs=16000 --length=1.0 --format=float --seed=2 " +
@@ -144,10 +144,10 @@ class HiddenEffect : public ::testing::Test {
     SCOPED_TRACE(name);
     const std::string model = dir_->path(name + ".model"), out = dir_->path(name + "_eq");
     ASSERT_EQ(0, run(kBin + "/rir-eq fit " + fit_options + " " + sets_.real_scp + " " + model, sets_.log))
-        << dir_->read_text("log.txt");
+        << dir_->read("log.txt");
     ASSERT_EQ(0, run(kBin + "/rir-eq apply --seed=5 --format=float " + model + " " + synthetic_scp + " " + out,
                      sets_.log))
-        << dir_->read_text("log.txt");
+        << dir_->read("log.txt");
     const std::vector<Signal> synthetic = load_set(synthetic_scp);
     std::map<std::string, Signal> equalized;
     for (Signal& s : load_set(out + "/rir.scp")) equalized[s.id] = std::move(s);
@@ -198,11 +198,11 @@ class HiddenEffect : public ::testing::Test {
               << " RIRs within 0.5 dB\n";
   }
 
-  static eqtest::ScratchDir* dir_;
+  static tsrir_test::ScratchDir* dir_;
   static Sets sets_;
 };
 
-eqtest::ScratchDir* HiddenEffect::dir_ = nullptr;
+tsrir_test::ScratchDir* HiddenEffect::dir_ = nullptr;
 Sets HiddenEffect::sets_;
 
 }  // namespace

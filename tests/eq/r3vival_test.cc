@@ -36,11 +36,11 @@ std::vector<RelativeGainsDb> read_gains(const std::string& path) {
 TEST(R3vival, EqClosesTheMeasuredVsSimulatedGap) {
   const std::string data = std::string(TSRIR_SOURCE_DIR) + "/../shared/data/rirs/r3vival";
   if (!std::filesystem::exists(data)) GTEST_SKIP() << data << " not found (real RIRs are read in place from ../shared/data)";
-  eqtest::ScratchDir dir;
+  tsrir_test::ScratchDir dir;
   const std::string build = std::filesystem::path(TSRIR_BIN_DIR).parent_path().string();
   const std::string command = std::string(TSRIR_SOURCE_DIR) + "/bench/eq/r3vival_eq.sh " + build + " " + dir.path("work") +
                               " >" + dir.path("report.md") + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << dir.read_text("report.md");
+  ASSERT_EQ(std::system(command.c_str()), 0) << dir.read("report.md");
   const GainStats real = summarize_gains(read_gains(dir.path("work/real.gains")));
   const GainStats sim = summarize_gains(read_gains(dir.path("work/sim.gains")));
   ASSERT_EQ(real.count, 102u);

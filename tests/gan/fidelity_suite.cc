@@ -34,7 +34,7 @@ std::string run_logged(const std::string& command, const std::string& log) {
 
 std::vector<tsrir::Signal> load_scp(const std::string& scp) {
   std::vector<tsrir::Signal> rirs;
-  for (const auto& ref : tsrir::read_rir_refs(scp)) rirs.push_back(tsrir::load_rir(ref));
+  for (const auto& ref : tsrir::read_rir_refs(scp, nullptr)) rirs.push_back(tsrir::load_rir(ref));
   return rirs;
 }
 

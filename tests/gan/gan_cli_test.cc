@@ -305,7 +305,7 @@ TEST_F(GanCli, TranslationKeepsIdsLengthsAndLevels) {
   const std::string model = " --model=" + dir_ + "/m --batch-size=2 ";
   RunResult r = run(kBin + "/gas-to-real" + model + dir_ + "/rir_list " + dir_ + "/o1", dir_);
   ASSERT_EQ(r.status, 0) << r.err;
-  const auto refs = tsrir::read_rir_refs(dir_ + "/o1/rir.scp");
+  const auto refs = tsrir::read_rir_refs(dir_ + "/o1/rir.scp", nullptr);
   ASSERT_EQ(refs.size(), 5u);
   for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(refs[i].id, "in-" + std::to_string(i));
@@ -313,7 +313,7 @@ TEST_F(GanCli, TranslationKeepsIdsLengthsAndLevels) {
     EXPECT_EQ(s.sample_rate_hz, 16000.0);
     EXPECT_EQ(s.samples.size(), 16000u);  // the original's default length
   }
-  const auto rooms = tsrir::read_rir_refs(dir_ + "/o1/rir_list");
+  const auto rooms = tsrir::read_rir_refs(dir_ + "/o1/rir_list", nullptr);
   ASSERT_EQ(rooms.size(), 5u);
   EXPECT_EQ(rooms[3].room_id, "room1");
 
@@ -379,7 +379,7 @@ TEST_F(GanCli, LightDecoderAndBfloat16) {
   ASSERT_EQ(run(kBin + "/gas-to-real" + model + synthetic_ + " " + dir_ + "/f32", dir_).status, 0);
   ASSERT_EQ(run(kBin + "/gas-to-real" + model + "--precision=bfloat16 " + synthetic_ + " " + dir_ + "/bf16", dir_).status, 0);
   EXPECT_NE(run(kBin + "/gas-to-real" + model + "--precision=fp8 " + synthetic_ + " " + dir_ + "/x", dir_).status, 0);
-  for (const auto& ref : tsrir::read_rir_refs(dir_ + "/f32/rir.scp")) {
+  for (const auto& ref : tsrir::read_rir_refs(dir_ + "/f32/rir.scp", nullptr)) {
     const tsrir::Signal a = tsrir::load_rir(ref);
     const tsrir::Signal b = tsrir::read_audio(dir_ + "/bf16/" + ref.id + ".wav");
     ASSERT_EQ(a.samples.size(), b.samples.size()) << ref.id;

@@ -17,7 +17,7 @@ std::vector<tsrir::Signal> load_scp(const std::string& scp) {
   std::vector<tsrir::Signal> rirs;
   tsrir::AudioReadOptions options;
   options.target_rate_hz = 16000.0;
-  for (const auto& ref : tsrir::read_rir_refs(scp)) rirs.push_back(tsrir::load_rir(ref, options));
+  for (const auto& ref : tsrir::read_rir_refs(scp, nullptr)) rirs.push_back(tsrir::load_rir(ref, options));
   return rirs;
 }
 }  // namespace

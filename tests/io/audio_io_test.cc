@@ -9,8 +9,10 @@
 #include "io/audio_io.h"
 #include "io/rir_set.h"
 #include "sndfile_writer.h"
-#include "test_dir.h"
+#include "test_support.h"
 #include "util/error.h"
+
+using tsrir_test::TempDirTest;
 
 using namespace tsrir;
 
@@ -159,20 +161,22 @@ TEST_F(AudioIo, RirSetWriterIsAtomicAndWritesKaldiLists) {
     w.commit();
   }
   EXPECT_TRUE(std::filesystem::exists(out + "/a.wav"));
-  auto refs = read_rir_refs(out + "/rir_list");
+  auto refs = read_rir_refs(out + "/rir_list", nullptr);
   ASSERT_EQ(refs.size(), 2u);
   EXPECT_EQ(refs[0].id, "a");
   EXPECT_EQ(refs[1].room_id, "room1");
   Signal b = load_rir(refs[1]);
   EXPECT_EQ(b.samples[1], 0.5f);
-  auto scp = read_rir_refs(out + "/rir.scp");
+  // Read without a ledger: nothing recorded, so the set may be replaced.
+  { RirSetWriter(out, SampleFormat::kInt16); }
+  // Read into the run's ledger: an input now, and no writer may write over it.
+  auto scp = read_rir_refs(out + "/rir.scp", run_inputs());
   EXPECT_EQ(scp[0].rxfilename, refs[0].rxfilename);
   // The scp has no rooms: they come from the rir_list beside it.
   EXPECT_EQ(scp[1].room_id, "room1");
   EXPECT_EQ(scp[0].room_id, "a");
-  // The set was just read: it is an input now, and no writer may write over it.
   EXPECT_THROW(RirSetWriter(out, SampleFormat::kInt16), Error);
-  clear_noted_inputs();
+  run_inputs()->clear();
   {
     RirSetWriter w(out, SampleFormat::kInt16);
     w.add(Signal{"c", 16000, {0.5f}});
@@ -183,7 +187,7 @@ TEST_F(AudioIo, RirSetWriterIsAtomicAndWritesKaldiLists) {
   for (const auto& e : std::filesystem::directory_iterator(dir_))
     EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
   // A single audio file is a set of one, id = file stem.
-  auto one = read_rir_refs(out + "/a.wav");
+  auto one = read_rir_refs(out + "/a.wav", nullptr);
   ASSERT_EQ(one.size(), 1u);
   EXPECT_EQ(one[0].id, "a");
 }

@@ -3,8 +3,10 @@
 #include <filesystem>
 
 #include "io/data_dir.h"
-#include "test_dir.h"
+#include "test_support.h"
 #include "util/error.h"
+
+using tsrir_test::TempDirTest;
 
 using namespace tsrir;
 

@@ -3,8 +3,10 @@
 #include <utility>
 
 #include "io/kaldi_lists.h"
-#include "test_dir.h"
+#include "test_support.h"
 #include "util/error.h"
+
+using tsrir_test::TempDirTest;
 
 using namespace tsrir;
 
@@ -72,8 +74,8 @@ TEST_F(Lists, NoiseListsAndScpFallback) {
   auto n = read_noise_list(path("noise_list"));
   ASSERT_EQ(n.size(), 2u);
   EXPECT_EQ(n[0].room_linkage, "room1");
-  EXPECT_EQ(n[0].bg_fg_type, "background");
-  EXPECT_EQ(n[1].bg_fg_type, "foreground");
+  EXPECT_EQ(n[0].bg_fg_type, BgFgType::kBackground);
+  EXPECT_EQ(n[1].bg_fg_type, BgFgType::kForeground);
   EXPECT_THROW(parse_noise_list_line("--noise-id a --noise-type isotropic a.wav", "l"), Error);
   EXPECT_THROW(parse_noise_list_line("--noise-id a --noise-type loud a.wav", "l"), Error);
   write_text("noise.scp", "n1 /x/n1.wav\nn2 cat n2.wav |\n");

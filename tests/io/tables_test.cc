@@ -6,10 +6,11 @@
 #include "io/kaldi_table.h"
 #include "io/rxfile.h"
 #include "io/shell.h"
-#include "test_dir.h"
+#include "test_support.h"
 #include "util/error.h"
 
 using namespace tsrir;
+using tsrir_test::TempDirTest;
 
 class Tables : public TempDirTest {};
 
@@ -114,6 +115,7 @@ TEST_F(Tables, InterruptedProgramRemovesItsTemporaries) {
 #include <csignal>
 
 #include "util/cli.h"
+
 int interrupted_child(const std::string& final_path) {
   return run_program("child", [&] {
     AtomicTextFile f(final_path);

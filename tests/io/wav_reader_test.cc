@@ -11,8 +11,10 @@
 #include "io/audio_io.h"
 #include "io/wav_reader.h"
 #include "sndfile_writer.h"
-#include "test_dir.h"
+#include "test_support.h"
 #include "util/error.h"
+
+using tsrir_test::TempDirTest;
 
 using namespace tsrir;
 

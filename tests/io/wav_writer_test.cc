@@ -14,7 +14,9 @@
 #include <random>
 
 #include "io/audio_io.h"
-#include "test_dir.h"
+#include "test_support.h"
+
+using tsrir_test::TempDirTest;
 
 using namespace tsrir;
 

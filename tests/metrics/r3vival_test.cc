@@ -50,7 +50,7 @@ TEST(R3vival, T30MediansPerConditionMatchTheCsv) {
 
   std::vector<RirRef> refs;
   for (const auto& entry : fs::directory_iterator(kDir)) {
-    if (entry.path().extension() == ".wav") refs.push_back(read_rir_refs(entry.path().string())[0]);
+    if (entry.path().extension() == ".wav") refs.push_back(read_rir_refs(entry.path().string(), nullptr)[0]);
   }
   ASSERT_EQ(refs.size(), 170u);
   std::vector<RirMetrics> results(refs.size());

@@ -208,6 +208,9 @@ class AugmenterVsReverberateData(unittest.TestCase):
                             speech_rvb_probability=1.5)
         with self.assertRaisesRegex(TypeError, "unexpected keyword argument .snr."):
             tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"], snr="1")
+        # Choices are reverberate-data's own names (one table with the command line's).
+        with self.assertRaisesRegex(tsrir.Error, "option 'noise_start': expected one of: zero, random"):
+            tsrir.Augmenter(recordings=recs, rir_set_parameters=[self.dir + "/lists/rir_list_a"], noise_start="late")
         with self.assertRaisesRegex(tsrir.Error, "not in"):
             self.aug.plan("no-such-recording")
         with self.assertRaisesRegex(tsrir.Error, "nowhere"):

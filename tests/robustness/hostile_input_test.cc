@@ -57,7 +57,7 @@ TEST_F(HostileInput, HostileFileNamesReadThroughEveryListForm) {
     write_bytes(p, robust::make_wav({}, tone));
     // scp form: the value is the rest of the line, spaces included.
     write_bytes(path("list.scp"), "r1 " + p + "\n");
-    auto refs = read_rir_refs(path("list.scp"));
+    auto refs = read_rir_refs(path("list.scp"), nullptr);
     ASSERT_EQ(refs.size(), 1u) << name;
     EXPECT_EQ(refs[0].rxfilename, p);
     EXPECT_EQ(load_rir(refs[0]).size(), tone.size()) << name;
@@ -67,7 +67,7 @@ TEST_F(HostileInput, HostileFileNamesReadThroughEveryListForm) {
     e.room_id = "room one";
     e.rxfilename = p;
     write_bytes(path("rir_list"), format_rir_list_line(e) + "\n");
-    refs = read_rir_refs(path("rir_list"));
+    refs = read_rir_refs(path("rir_list"), nullptr);
     ASSERT_EQ(refs.size(), 1u) << name;
     EXPECT_EQ(refs[0].rxfilename, p) << format_rir_list_line(e);
     EXPECT_EQ(refs[0].room_id, "room one");
@@ -116,7 +116,7 @@ TEST_F(HostileInput, OutputSetInHostileDirectoryIsReadableAndQuoted) {
     w.commit();
   }
   for (const char* table : {"rir.scp", "rir_list"}) {
-    auto refs = read_rir_refs(out + "/" + table);
+    auto refs = read_rir_refs(out + "/" + table, nullptr);
     ASSERT_EQ(refs.size(), 1u) << table;
     EXPECT_EQ(load_rir(refs[0]).size(), 2u) << table;
   }
@@ -244,7 +244,7 @@ TEST_F(HostileInput, PipesKeepTheirQuotingThroughRirLists) {
   ASSERT_EQ(e.rxfilename, pipe);
   // Written back by our formatter and read again: the same command, which still runs.
   write_bytes(path("out_list"), format_rir_list_line(e) + "\n");
-  auto refs = read_rir_refs(path("out_list"));
+  auto refs = read_rir_refs(path("out_list"), nullptr);
   ASSERT_EQ(refs.size(), 1u);
   EXPECT_EQ(refs[0].rxfilename, pipe) << format_rir_list_line(e);
   EXPECT_EQ(load_rir(refs[0]).size(), 500u);

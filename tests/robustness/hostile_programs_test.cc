@@ -131,7 +131,7 @@ TEST_F(HostilePrograms, RirSimulateWithHostileIdsWritesReadableLists) {
   auto r = robust::run_argv({prog, path("rooms.txt"), hostile_dir_ + "/sim"});
   ASSERT_EQ(r.status, 0) << r.output;
   for (const char* list : {"rir.scp", "rir_list"}) {
-    auto refs = tsrir::read_rir_refs(hostile_dir_ + "/sim/" + list);
+    auto refs = tsrir::read_rir_refs(hostile_dir_ + "/sim/" + list, nullptr);
     ASSERT_EQ(refs.size(), 1u) << list;
     EXPECT_EQ(refs[0].id, "r;$(touch${IFS}CANARY)'1");
     EXPECT_GT(tsrir::load_rir(refs[0]).size(), 1000u) << list;
@@ -362,7 +362,7 @@ TEST_F(HostilePrograms, RirRoomListTakesHostileIdsAndPathsAsData) {
   if (!need("rir-simulate").empty()) {
     r = robust::run_argv({need("rir-simulate"), out, hostile_dir_ + "/sim"});
     ASSERT_EQ(r.status, 0) << r.output;
-    auto refs = tsrir::read_rir_refs(hostile_dir_ + "/sim/rir_list");
+    auto refs = tsrir::read_rir_refs(hostile_dir_ + "/sim/rir_list", nullptr);
     ASSERT_EQ(refs.size(), 1u);
     EXPECT_EQ(refs[0].id, id);
     EXPECT_EQ(refs[0].room_id, room);

@@ -150,6 +150,20 @@ TEST(Options, UsageShowsDefaultsChoicesAliasesAndConfig) {
   }
 }
 
+TEST(Options, ChoiceTablesNameValuesForEveryReader) {
+  const Choices<Shape> shapes = {{"shoebox", Shape::kShoebox}, {"sphere", Shape::kSphere}};
+  EXPECT_EQ(choice_value(shapes, "sphere"), Shape::kSphere);
+  EXPECT_EQ(choice_name(shapes, Shape::kShoebox), "shoebox");
+  EXPECT_EQ(choice_list(shapes, " | "), "shoebox | sphere");
+  try {
+    parse_choice(shapes, "cube", "room shape");
+    FAIL() << "cube accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "unknown room shape 'cube' (expected shoebox, sphere)");
+  }
+  EXPECT_THROW(choice_value(shapes, "cube"), Error);
+}
+
 TEST(Options, RegisteringANameTwiceIsAProgramBug) {
   CommandLine cl("toy", "u");
   int a = 0, b = 0;

@@ -34,7 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         }
         break;
       case 2:
-        for (const auto& r : read_rir_refs(path)) {
+        for (const auto& r : read_rir_refs(path, nullptr)) {
           FUZZ_CHECK(!r.id.empty() && !r.rxfilename.empty() && !r.where.empty(), r.id);
           FUZZ_CHECK(ids.insert(r.id).second, "duplicate id " + r.id);
         }

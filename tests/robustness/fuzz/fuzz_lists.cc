@@ -51,7 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         NoiseListEntry e = parse_noise_list_line(line, "fuzz");
         FUZZ_CHECK(!e.noise_id.empty() && !e.rxfilename.empty(), line);
         FUZZ_CHECK(e.noise_type == "isotropic" || e.noise_type == "point-source", line);
-        FUZZ_CHECK(e.bg_fg_type == "background" || e.bg_fg_type == "foreground", line);
+        FUZZ_CHECK(!choice_name(bg_fg_type_choices(), e.bg_fg_type).empty(), line);
         if (e.noise_type == "isotropic") FUZZ_CHECK(!e.room_linkage.empty(), line);
         break;
       }

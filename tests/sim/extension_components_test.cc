@@ -1,10 +1,10 @@
-// The model extensions, each against a reference computed another way.
+// The model extensions (src/sim), each against a reference computed another way (the independent
+// generators of tests/diagnose among them).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <complex>
 
-#include "diagnose/rir_features.h"
 #include "dsp/fft.h"
 #include "hidden_effects.h"
 #include "measured_rir_generator.h"
@@ -22,7 +22,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-sim::RoomSpec test_room() { return testing::make_test_rooms(1, 5)[0]; }
+sim::RoomSpec test_room() { return testdata::make_test_rooms(1, 5)[0]; }
 
 TEST(AirAbsorption, MatchesIsoTableAndTheIndependentImplementation) {
   // ISO 9613-1 Table 1 at 20 C, 50 % RH (dB/km), 125 Hz - 2 kHz; above, the table uses the exact
@@ -31,7 +31,7 @@ TEST(AirAbsorption, MatchesIsoTableAndTheIndependentImplementation) {
   const double table[] = {0.443, 1.32, 2.73, 4.66, 9.66};
   for (int i = 0; i < 5; ++i) {
     EXPECT_NEAR(sim::air_attenuation_db_per_m(f[i], 20.0, 50.0) * 1000.0, table[i], 0.03 * table[i]) << f[i];
-    EXPECT_NEAR(sim::air_attenuation_db_per_m(f[i], 12.0, 23.0), testing::test_air_attenuation_db_per_m(f[i], 12.0, 23.0),
+    EXPECT_NEAR(sim::air_attenuation_db_per_m(f[i], 12.0, 23.0), testdata::test_air_attenuation_db_per_m(f[i], 12.0, 23.0),
                 1e-9);
   }
 }
@@ -117,27 +117,6 @@ TEST(Transducer, FilterIsMinimumPhaseWithTheRequestedBandGains) {
     if (i < 0.005 * fs) early += double(h[i]) * h[i];
   }
   EXPECT_GT(early / total, 0.99);
-}
-
-// onset_time_s (used where only the onset is needed) is compute_features' onset, bit for bit, and
-// finds a band-limited impulse at 100.3 samples under a -30 dB decaying tail within half a sample
-// (the parabolic peak interpolation on |h| is biased towards the nearest sample for a sinc).
-TEST(RirFeatures, OnsetTimeIsTheFeaturePassOnset) {
-  Signal rir;
-  rir.sample_rate_hz = 16000;
-  rir.samples.assign(8000, 0.0f);
-  for (int i = 80; i < 121; ++i) {
-    const double t = i - 100.3;
-    rir.samples[i] = float(std::sin(kPi * t) / (kPi * t));
-  }
-  uint32_t state = 7;
-  for (int i = 140; i < 8000; ++i) {
-    state = state * 1664525u + 1013904223u;
-    rir.samples[i] += float(0.03 * (double(state >> 8) / double(1 << 24) - 0.5) * std::exp(-(i - 140) / 1500.0));
-  }
-  const double onset = diagnose::onset_time_s(rir);
-  EXPECT_EQ(onset, diagnose::compute_features(rir, 200.0).onset_s);
-  EXPECT_NEAR(onset * rir.sample_rate_hz, 100.3, 0.5);
 }
 
 TEST(OnsetShift, FractionalShiftMatchesTheBandLimitedImpulse) {

@@ -1,0 +1,57 @@
+// A recording's plan (augment_plan.h) made into audio, as reverberate-data --write-wavs writes it
+// and as the Python Augmenter gives it for one utterance: the plan's RIR and noises read at the
+// speech's sample rate (each (item, rate) loaded once, by whichever thread needs it first; channel
+// 0 of a multichannel file, with rate_policy.h's warning), each noise made as the pipe's nested
+// step would make it, then reverberate_channel(). Thread-safe.
+#pragma once
+#include <map>
+#include <memory>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+#include "augment/augment_plan.h"
+#include "augment/reverberate.h"
+
+namespace tsrir {
+
+class PlanRenderer {
+ public:
+  // `sources` must outlive the renderer.
+  PlanRenderer(const AugmentSources& sources, ReverbOptions reverb);
+  PlanRenderer(const PlanRenderer&) = delete;
+  PlanRenderer& operator=(const PlanRenderer&) = delete;
+
+  // RIR `index` of the sources at `rate` (null for -1: no RIR).
+  std::shared_ptr<const PreparedRir> rir(long index, double rate);
+  // The plan's noises as they are added to the reverberant speech.
+  std::vector<AdditiveSignal> additive_signals(const RecordingPlan& plan, double rate);
+  // The far-field copy of `speech` (one channel at `rate`), before any encoding.
+  std::vector<float> render(const std::vector<float>& speech, double rate, const RecordingPlan& plan);
+  const ReverbOptions& reverb() const { return reverb_; }
+
+ private:
+  // Loads each (item, rate) once; other threads wanting the same one wait for that load.
+  template <typename T>
+  class LoadOnce {
+   public:
+    template <typename Load>
+    std::shared_ptr<const T> get(const std::pair<long, double>& key, Load load);
+
+   private:
+    struct Slot {
+      std::once_flag once;
+      std::shared_ptr<const T> value;
+      std::exception_ptr error;
+    };
+    std::mutex mutex_;
+    std::map<std::pair<long, double>, std::shared_ptr<Slot>> slots_;
+  };
+
+  const AugmentSources& sources_;
+  ReverbOptions reverb_;
+  LoadOnce<PreparedRir> rirs_;
+  LoadOnce<std::vector<float>> noises_;
+};
+
+}  // namespace tsrir
