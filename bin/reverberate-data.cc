@@ -68,8 +68,9 @@ const char* kUsage =
     "  With --write-wavs=<dir>, 16-bit wavs <dir>/<new-id>.wav are written (any toolkit can read them);\n"
     "  the same seed gives the same audio in both modes. Relative RIR/noise paths are used as given,\n"
     "  as Kaldi does: pipes must run from the same directory.\n"
-    "RIRs and noises at another sample rate are resampled to the speech's rate, in both modes;\n"
-    "--source-sampling-rate (Kaldi's option) is accepted and, with --write-wavs, checked.\n"
+    "One rate per data dir: --sample-rate (Kaldi's --source-sampling-rate), else the first recording's.\n"
+    "RIRs and noises are resampled to it in both modes; a recording at another rate is resampled when\n"
+    "--sample-rate was given (in pipes by wav-reverberate --sample-rate) and refused otherwise.\n"
     "Long recordings: with --write-wavs, those beyond --max-in-memory-duration (default 300 s) are\n"
     "read in passes with memory independent of their length and give the same wav.\n";
 
