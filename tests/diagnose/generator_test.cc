@@ -2,6 +2,7 @@
 // and its out-of-catalog and modal parts against what they are meant to show.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dsp/fft.h"
