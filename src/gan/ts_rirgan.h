@@ -12,6 +12,13 @@ namespace tsrir {
 
 class OptionsItf;
 
+enum class GanDevice { kCpu, kCuda };
+inline const ChoiceNames<GanDevice> kGanDeviceNames = {{"cpu", GanDevice::kCpu}, {"cuda", GanDevice::kCuda}};
+// Which generator translates: G_SR (the paper's use) or G_RS.
+enum class GanDirection { kSyntheticToReal, kRealToSynthetic };
+inline const ChoiceNames<GanDirection> kGanDirectionNames = {{"synthetic-to-real", GanDirection::kSyntheticToReal},
+                                                             {"real-to-synthetic", GanDirection::kRealToSynthetic}};
+
 struct GanTrainOptions {
   std::string real_list;        // rir scp / rir_list / audio file: the "real" domain
   std::string synthetic_list;   // the "synthetic" domain
@@ -24,7 +31,7 @@ struct GanTrainOptions {
   int num_threads = 1;
   long long checkpoint_every = 500;  // steps; a checkpoint is always written at exit
   bool resume = false;
-  std::string device = "cpu";   // "cpu" | "cuda"
+  GanDevice device = GanDevice::kCpu;
   // Collapse guard: every N steps (0: never) G_SR translates a fixed probe batch of synthetic
   // RIRs; training stops with an Error when the outputs are silent or nearly equal to each other
   // while their inputs are not.
@@ -51,8 +58,7 @@ struct GanTranslateOptions {
   std::string model;            // model dir (uses its checkpoint.pt) or a checkpoint file
   std::string input_list;
   std::string out_dir;
-  // "synthetic-to-real" (G_SR, the paper's use) or "real-to-synthetic" (G_RS).
-  std::string direction = "synthetic-to-real";
+  GanDirection direction = GanDirection::kSyntheticToReal;
   int batch_size = 16;
   // Output length in samples at 16 kHz (the original keeps 16000 of the 16384 generated), or -1:
   // the input's length after resampling to 16 kHz, capped at 16384.
@@ -61,12 +67,12 @@ struct GanTranslateOptions {
   // original. true: each output is scaled by the input's original peak |x|.
   bool restore_level = false;
   SampleFormat format = SampleFormat::kFloat32;
-  std::string device = "cpu";
+  GanDevice device = GanDevice::kCpu;
   int num_threads = 1;
-  // "float32", or "bfloat16": weights and activations in bfloat16 with float32 accumulation
+  // float32, or bfloat16: weights and activations in bfloat16 with float32 accumulation
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
   // (tests/gan/gan_networks_test.cc). Slower than float32 on CPUs without bfloat16 arithmetic.
-  std::string precision = "float32";
+  GanPrecision precision = GanPrecision::kFloat32;
 
   void Register(OptionsItf* opts);  // gan_options.cc; input list and out dir are positional
 };
