@@ -1,7 +1,9 @@
 #include "gan/gan_band_gain.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <tuple>
 
 #include <torch/fft.h>
 

@@ -32,6 +32,7 @@
 #pragma once
 #include <torch/torch.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace tsrir {
