@@ -1,29 +1,41 @@
 #!/usr/bin/env bash
-# TS-RIRGAN translation-fidelity suite over several seeds (issue 17): for each seed, new data
-# (tests/gan/fidelity_domains.cc), a model trained with the given ts-rirgan-train options, held-out
-# synthetic RIRs translated, and every measure printed (tests/gan/fidelity_measures.h), then the
-# pass count. One LibTorch thread per run; JOBS runs in parallel (default 2).
-# Usage: bench/gan/fidelity_seeds.sh [build-dir] [seeds, e.g. "1 2 3 4 5"] ["ts-rirgan-train options"]
-# Default options: the program's defaults at the width, batch and steps issue 17 names.
+# TS-RIRGAN translation-fidelity suite over several seeds and hidden-effect kinds (issues 17, 34):
+# for each kind and seed, new data (tests/gan/fidelity_domains.cc), a model trained with the given
+# ts-rirgan-train options, held-out synthetic RIRs translated, and every measure printed
+# (tests/gan/fidelity_measures.h), then the pass count per kind. One LibTorch thread per run;
+# JOBS runs in parallel (default 2).
+# Usage: bench/gan/fidelity_seeds.sh [build-dir] [seeds, e.g. "1 2 3 4 5"] ["ts-rirgan-train options"] [kinds]
+# Default options: the program's defaults at the width, batch and steps issue 17 names; default
+# kinds: all four (low-frequency decay direct early).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$here/build}
 seeds=${2:-1 2 3 4 5}
 args=${3:---width=16 --batch-size=4 --steps=1000}
+kinds=${4:-low-frequency decay direct early}
 suite=$build/bin/gan-fidelity-suite
 [[ -x $suite ]] || { echo "missing $suite (ninja -C $build gan-fidelity-suite)" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, load: $(cut -d' ' -f1-3 /proc/loadavg); options: $args"
-run_seed() {
-  "$suite" "$build/bin" "$work/seed$1" "$1" "$args" 1 > "$work/seed$1.out" 2>&1 || true
+run_one() {  # kind seed
+  local start end
+  start=$(cut -d' ' -f1 /proc/loadavg)
+  /usr/bin/time -f "%U %S" -o "$work/$1.$2.time" \
+    "$suite" --effect="$1" "$build/bin" "$work/$1.seed$2" "$2" "$args" 1 > "$work/$1.$2.out" 2>&1 || true
+  end=$(cut -d' ' -f1 /proc/loadavg)
+  echo "  (load $start at start, $end at end; CPU s $(awk '{print $1 + $2}' "$work/$1.$2.time"))" >> "$work/$1.$2.out"
 }
-export -f run_seed
+export -f run_one
 export args suite build work
-printf '%s\n' $seeds | xargs -P "${JOBS:-2}" -I{} bash -c 'run_seed {}'
-passed=0
-for s in $seeds; do
-  cat "$work/seed$s.out"
-  grep -q '; PASS$' "$work/seed$s.out" && passed=$((passed + 1))
+for k in $kinds; do for s in $seeds; do echo "$k $s"; done; done | xargs -P "${JOBS:-2}" -L1 bash -c 'run_one "$0" "$1"'
+for k in $kinds; do
+  passed=0
+  echo "## kind $k"
+  for s in $seeds; do
+    cat "$work/$k.$s.out"
+    grep -q '; PASS$' "$work/$k.$s.out" && passed=$((passed + 1))
+  done
+  echo "kind $k: passed $passed of $(echo $seeds | wc -w) seeds"
 done
-echo "passed $passed of $(echo $seeds | wc -w) seeds"
+echo "# done $(date -u +%Y-%m-%dT%H:%MZ), load: $(cut -d' ' -f1-3 /proc/loadavg)"

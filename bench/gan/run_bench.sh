@@ -81,6 +81,10 @@ for variant in "" "--bins=serial" "--conv=direct" "--allocator=libtorch" "--conv
   "$bin/gan_forward_bench" --width=64 --decoder=light --generator=residual --correction-max-hz=500 --batch=16 \
     --threads=$threads --precision=float32 --reps=5 $variant
 done
+# The opt-in band-gain generator (issue 34): the same model plus its band-gain stage, whose parts
+# are timed alone on the last line (band split, knot gains, whole stage).
+"$bin/gan_forward_bench" --width=64 --decoder=light --generator=band-gain --correction-max-hz=500 --batch=16 \
+  --threads=$threads --precision=float32 --reps=5 --band-gain-profile=1
 
 echo
 echo "| translation (width 64, $n RIRs, --batch-size=16 unless said) | RIRs/s (wall, excl. model load) | CPU s total | peak RSS MB |"

@@ -334,6 +334,16 @@ std::map<std::string, std::string> band_refit_models(const SetObservations& obs,
   return spec;
 }
 
+std::string band_refit_pooled_model(const SetObservations& obs, const DiagnoseOptions& options) {
+  std::vector<size_t> idx(obs.size());
+  for (size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+  const sim::BandValues scale = refine_band_scales(obs, idx, band_absorption_scales(obs, idx, AirFit{}, 0.0),
+                                                   options.baseline_model, options, 3, 0.0);
+  const std::string spec = options.baseline_model + "+" + band_absorption_spec(scale);
+  log_info("band refit pooled over the fit half's " + std::to_string(obs.size()) + " RIRs: " + spec);
+  return spec;
+}
+
 const SetObservations& band_refitted(const DecisionContext& ctx) {
   return ctx.reference(kBandRefittedReference, render_band_refitted);
 }

@@ -97,6 +97,9 @@ sim::BandValues refine_band_scales(const SetObservations& obs, const std::vector
 // measured decay (all bands, no air share: band_absorption_scales + 3 refinements), as a model
 // spec. What any user would try first; the gain table's second baseline (diagnose.h).
 std::map<std::string, std::string> band_refit_models(const SetObservations& obs, const DiagnoseOptions& options);
+// The same refit pooled over every RIR of `obs` (one set of band scales for all rooms): the
+// refitted baseline of a held-out RIR whose room has no RIR in the fit half.
+std::string band_refit_pooled_model(const SetObservations& obs, const DiagnoseOptions& options);
 
 // `obs` with seeds A and B re-rendered (features recomputed) with band_refit_models.
 SetObservations render_band_refitted(const SetObservations& obs, const DiagnoseOptions& options);

@@ -293,6 +293,20 @@ void add_examples(const SetObservations& obs, const std::vector<size_t>& eval, c
   }
 }
 
+// The band refit is per room, from the fit half's RIRs of that room; a held-out RIR whose room has
+// none there (every RIR its own room, or rooms split apart) gets the refit pooled over the fit half.
+void add_pooled_refit_for_unfitted_rooms(const SetObservations& obs, const std::vector<size_t>& eval,
+                                         const SetObservations& fit_obs, const DiagnoseOptions& options,
+                                         std::map<std::string, std::string>* by_room) {
+  std::string pooled;
+  for (size_t i : eval) {
+    const std::string room = room_group(obs[i].room);
+    if (by_room->count(room)) continue;
+    if (pooled.empty()) pooled = band_refit_pooled_model(fit_obs, options);
+    (*by_room)[room] = pooled;
+  }
+}
+
 // Decides every effect on the fit half (`withdrawn` set not detected) and fits the detected ones'
 // extensions; the findings and the extended model per room go into *d.
 std::vector<Extension> decide_and_fit(const EffectRegistry& registry, const SetObservations& obs,
@@ -398,6 +412,7 @@ Diagnosis diagnose_set(const std::vector<sim::RoomSpec>& rooms, const std::vecto
     // The second baseline (the cheap fix): the decisions' band refit when they rendered one.
     const auto refit = references.find(kBandRefittedReference);
     d.refitted_model_by_room = refit != references.end() ? refit->second.model_by_room : band_refit_models(fit_obs, options);
+    add_pooled_refit_for_unfitted_rooms(obs, eval, fit_obs, options, &d.refitted_model_by_room);
     evaluate(registry, obs, eval, extensions, options, &d);
   }
   d.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -23,9 +23,9 @@ constexpr double kResidualInitGain = 0.1;
 
 // `fan` is the number of inputs summed into one output (in*k for a conv, in*k/stride for the
 // transposed conv), used by kHe only.
-void init_layer(torch::Tensor& weight, torch::Tensor& bias, InitKind init, double fan) {
+void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double fan) {
   torch::NoGradGuard no_grad;
-  if (init == InitKind::kHe) {
+  if (init == GanInit::kHe) {
     const double limit = std::sqrt(6.0 / fan);  // uniform, variance 2/fan (ReLU gain)
     weight.uniform_(-limit, limit);
   } else {
@@ -112,14 +112,8 @@ int64_t fast_fft_length(int64_t n) {
 
 }  // namespace
 
-InitKind parse_init_kind(const std::string& name) {
-  if (name == "glorot") return InitKind::kGlorot;
-  if (name == "he") return InitKind::kHe;
-  throw Error("--init must be glorot or he, got '" + name + "'");
-}
-
 SameConv1dImpl::SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
-                               InitKind init)
+                               GanInit init)
     : kernel_length_(kernel_length), stride_(stride) {
   conv_ = register_module("conv", torch::nn::Conv1d(torch::nn::Conv1dOptions(in_channels, out_channels, kernel_length)
                                                         .stride(stride).bias(true)));
@@ -177,7 +171,7 @@ torch::Tensor SameConv1dImpl::correlate_by_fft(const torch::Tensor& padded, int6
 }
 
 SameConvTranspose1dImpl::SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length,
-                                                 int stride, InitKind init)
+                                                 int stride, GanInit init)
     : out_channels_(out_channels), kernel_length_(kernel_length), stride_(stride) {
   weight = register_parameter("weight", torch::empty({in_channels, out_channels, kernel_length}));
   bias = register_parameter("bias", torch::empty({out_channels}));
@@ -267,18 +261,14 @@ torch::Tensor lowpass_same(const torch::Tensor& x, const torch::Tensor& taps) {
   return full.narrow(-1, half, n).to(x.scalar_type());
 }
 
-GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const std::string& decoder,
-                             const std::string& kind, double correction_max_hz, const std::string& activation) {
-  if (activation == "leaky_relu") {
-    negative_slope_ = 0.2;
-  } else if (activation != "relu") {
-    throw Error("--generator-activation must be relu or leaky_relu, got '" + activation + "'");
-  }
-  if (kind != "original" && kind != "residual") {
-    throw Error("--generator must be original or residual, got '" + kind + "'");
-  }
-  residual_ = kind == "residual";
-  const int w = width;
+GeneratorSpec GeneratorSpec::of(const GanSettings& s) {
+  return {s.width, s.kernel_length, s.decoder, s.generator, s.correction_max_hz, s.generator_activation};
+}
+
+GeneratorImpl::GeneratorImpl(const GeneratorSpec& spec, GanInit init) {
+  negative_slope_ = spec.activation == GanActivation::kLeakyRelu ? 0.2 : 0.0;
+  residual_ = spec.kind != GanGenerator::kOriginal;
+  const int w = spec.width, kernel_length = spec.kernel_length;
   const int down_channels[9][2] = {{1, w},         {w, 2 * w},     {2 * w, 4 * w},
                                    {4 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w},
                                    {8 * w, 8 * w}, {8 * w, 8 * w}, {8 * w, 8 * w}};
@@ -289,7 +279,7 @@ GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const 
   }
   // The original's comments say 256/128/64 on the way up ("light"); its code uses dim * 16, 8, 4.
   int m[3];
-  decoder_multipliers(decoder, m);
+  decoder_multipliers(spec.decoder, m);
   const int up_channels[4][2] = {{8 * w, m[0] * w}, {m[0] * w, m[1] * w}, {m[1] * w, m[2] * w}, {m[2] * w, 1}};
   for (int i = 0; i < 4; ++i) {
     up_.push_back(register_module("upconv_" + std::to_string(i + 1),
@@ -306,28 +296,35 @@ GeneratorImpl::GeneratorImpl(int width, int kernel_length, InitKind init, const 
     up_.back()->weight.mul_(kResidualInitGain);
     up_.back()->bias.zero_();
   }
-  if (correction_max_hz > 0) {
-    if (!residual_) throw Error("--correction-max-hz needs --generator=residual (it band-limits the correction)");
-    const std::vector<float> taps = correction_lowpass_taps(correction_max_hz);
+  if (spec.correction_max_hz > 0) {
+    if (!residual_) {
+      throw Error("--correction-max-hz needs --generator=residual or band-gain (it band-limits the correction)");
+    }
+    const std::vector<float> taps = correction_lowpass_taps(spec.correction_max_hz);
     // A buffer (moves with the module), not a parameter: the band is fixed, not learned.
     lowpass_ = register_buffer("correction_lowpass",
                                torch::tensor(taps, torch::kFloat).view({1, 1, int64_t(taps.size())}));
   }
+  // Registered after the other layers, so that a band-gain generator draws the same initial
+  // weights as a residual one of the same seed (the head starts at zero, drawing nothing).
+  if (spec.kind == GanGenerator::kBandGain) band_gain_ = register_module("band_gain", BandGain(8 * w));
 }
 
-Generator make_generator(const GanSettings& s, InitKind init) {
-  return Generator(s.width, s.kernel_length, init, s.decoder, s.generator, s.correction_max_hz,
-                   s.generator_activation);
-}
+Generator make_generator(const GanSettings& s, GanInit init) { return Generator(GeneratorSpec::of(s), init); }
 
 torch::Tensor GeneratorImpl::activate(const torch::Tensor& x) const {
   return negative_slope_ > 0 ? torch::leaky_relu(x, negative_slope_) : torch::relu(x);
 }
 
 torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
+  if (!residual_) {
+    for (auto& layer : down_) x = activate(layer->forward(x));
+    for (size_t i = 0; i + 1 < up_.size(); ++i) x = activate(up_[i]->forward(x));
+    return torch::tanh(up_.back()->forward(x));
+  }
   const torch::Tensor input = x;
-  torch::Tensor scale;
-  if (residual_) {
+  torch::Tensor scale, onset, mask;
+  {
     // The network sees each RIR at unit RMS and its correction is scaled back by that RMS. A
     // peak-normalised RIR is mostly a quiet tail (RMS ~1e-2), so without this every hidden
     // activation is ~1e-2 and the last layer's weights would have to grow to O(1) to make a
@@ -335,35 +332,41 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
     // property of the input, not learned, so no gradient flows through it.
     torch::NoGradGuard no_grad;
     scale = input.to(torch::kFloat).pow(2).mean(-1, true).sqrt().clamp_min(1e-8).to(input.scalar_type());
+    // Causal: an RIR is silent before its direct sound, so nothing is added before the input's
+    // onset (its first sample within 20 dB of its peak, as ISO 3382's onset).
+    const torch::Tensor magnitude = input.abs().to(torch::kFloat);
+    const torch::Tensor above = magnitude >= 0.1 * std::get<0>(magnitude.max(-1, true));
+    onset = above.to(torch::kFloat).argmax(-1, true);  // first maximum: first true
+    const torch::Tensor position = torch::arange(input.size(-1), onset.options()).view({1, 1, -1});
+    mask = (position >= onset).to(input.scalar_type());
   }
-  if (residual_) x = input / scale;
+  x = input / scale;
   for (auto& layer : down_) x = activate(layer->forward(x));
+  const torch::Tensor features = x;
   for (size_t i = 0; i + 1 < up_.size(); ++i) x = activate(up_[i]->forward(x));
-  if (residual_) {
-    // Causal correction: an RIR is silent before its direct sound, so nothing is added before
-    // the input's onset (its first sample within 20 dB of its peak, as ISO 3382's onset).
-    torch::Tensor mask;
-    {
-      torch::NoGradGuard no_grad;
-      const torch::Tensor magnitude = input.abs().to(torch::kFloat);
-      const torch::Tensor above = magnitude >= 0.1 * std::get<0>(magnitude.max(-1, true));
-      const torch::Tensor onset = above.to(torch::kFloat).argmax(-1, true);  // first maximum: first true
-      const torch::Tensor position = torch::arange(input.size(-1), onset.options()).view({1, 1, -1});
-      mask = (position >= onset).to(input.scalar_type());
-    }
-    torch::Tensor correction = up_.back()->forward(x);
-    if (lowpass_.defined()) {
-      // The FFT form, ~7-10x faster for this filter than the direct 529-tap sum
-      // (bench/gan/gan_forward_bench --lowpass-compare=1) and equal to it within float32
-      // rounding, gradient included (tests/gan). Training and translation both use it.
-      correction = lowpass_same(correction, lowpass_);
-    }
-    return input + correction.to(input.scalar_type()) * (mask * scale);
+  torch::Tensor correction = up_.back()->forward(x);
+  if (lowpass_.defined()) {
+    // The FFT form, ~7-10x faster for this filter than the direct 529-tap sum
+    // (bench/gan/gan_forward_bench --lowpass-compare=1) and equal to it within float32
+    // rounding, gradient included (tests/gan). Training and translation both use it.
+    correction = lowpass_same(correction, lowpass_);
   }
-  return torch::tanh(up_.back()->forward(x));
+  torch::Tensor added = correction.to(input.scalar_type()) * scale;
+  if (!band_gain_) return input + added * mask;
+  added = added + band_gain_->forward(input, features, onset, &last_log_gains_).to(input.scalar_type());
+  // At the input's peak level, as every RIR the discriminators see (the inputs are peak-normalised):
+  // otherwise a stronger direct sound (a directional source) would also be a louder RIR, which no
+  // real one is, and a translation would have to cut everything else instead.
+  const torch::Tensor output = input + added * mask;
+  torch::Tensor input_peak;
+  {
+    torch::NoGradGuard no_grad;
+    input_peak = std::get<0>(input.abs().max(-1, true));
+  }
+  return output * (input_peak / std::get<0>(output.abs().max(-1, true)).clamp_min(1e-8));
 }
 
-DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, InitKind init) {
+DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init) {
   int in = 1;
   for (int i = 0; i < 5; ++i) {
     const int out = width << i;
@@ -373,7 +376,7 @@ DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, InitKind init
   // 16384 / 4^5 = 16 positions of 16w channels.
   output_ = register_module("output", torch::nn::Linear(16 * in, 1));
   // The linear logit keeps Glorot under either init (no ReLU follows it).
-  init_layer(output_->weight, output_->bias, InitKind::kGlorot, 0.0);
+  init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
 }
 
 torch::Tensor DiscriminatorImpl::forward(torch::Tensor x) {
@@ -401,7 +404,7 @@ void TfRmsProp::step(const std::vector<torch::Tensor>& grads) {
 
 CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   // Construction order fixes which random numbers each network's initialiser draws.
-  const InitKind init = parse_init_kind(s.init);
+  const GanInit init = s.init;
   g_real = make_generator(s, init);
   g_synthetic = make_generator(s, init);
   d_real = Discriminator(s.width, s.kernel_length, init);
@@ -480,7 +483,7 @@ Generator load_generator(const std::string& path, const std::string& name, GanSe
   torch::serialize::InputArchive archive;
   open_archive(path, archive);
   *settings = archive_settings(archive, path);
-  Generator generator = make_generator(*settings, InitKind::kGlorot);
+  Generator generator = make_generator(*settings, GanInit::kGlorot);
   for (auto& item : generator->named_parameters()) {
     read_into(archive, archive_key(name, item.key()), item.value(), path);
   }

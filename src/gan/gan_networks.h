@@ -7,17 +7,17 @@
 #include <vector>
 
 #include "gan/compute_device.h"
+#include "gan/gan_band_gain.h"
 #include "gan/gan_settings.h"
 
 namespace tsrir {
 namespace gan {
 
-// Kernel initialisation. kGlorot is the original's (TF1 tf.layers default, Glorot-uniform). kHe
-// (He-uniform, ReLU gain, fan = the inputs summed per output) is a departure for small CPU models:
-// with Glorot the 13 un-normalised ReLU layers shrink the signal by ~3e-4, so a generator's output
-// starts near zero and does not depend on its input for hundreds of steps. Biases start at zero.
-enum class InitKind { kGlorot, kHe };
-InitKind parse_init_kind(const std::string& name);  // "glorot" | "he"; Error otherwise
+// Kernel initialisation (GanInit). kGlorot is the original's (TF1 tf.layers default,
+// Glorot-uniform). kHe (He-uniform, ReLU gain, fan = the inputs summed per output) is a departure
+// for small CPU models: with Glorot the 13 un-normalised ReLU layers shrink the signal by ~3e-4, so
+// a generator's output starts near zero and does not depend on its input for hundreds of steps.
+// Biases start at zero.
 
 // tf.layers.conv1d(padding='SAME'): out = ceil(L/s), pad_total = max((out-1)s + k - L, 0), the
 // smaller half on the left. Cross-correlation, bias, Glorot-uniform kernel, zero bias.
@@ -36,7 +36,7 @@ InitKind parse_init_kind(const std::string& name);  // "glorot" | "he"; Error ot
 class SameConv1dImpl : public torch::nn::Module {
  public:
   SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
-                 InitKind init = InitKind::kGlorot);
+                 GanInit init = GanInit::kGlorot);
   torch::Tensor forward(const torch::Tensor& x);
   // The direct form whatever the mode (the FFT form's reference in tests and benchmarks).
   torch::Tensor forward_direct(const torch::Tensor& x);
@@ -61,7 +61,7 @@ TORCH_MODULE(SameConv1d);
 class SameConvTranspose1dImpl : public torch::nn::Module {
  public:
   SameConvTranspose1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
-                          InitKind init = InitKind::kGlorot);
+                          GanInit init = GanInit::kGlorot);
   torch::Tensor forward(const torch::Tensor& x);
   torch::Tensor weight, bias;
 
@@ -72,29 +72,44 @@ class SameConvTranspose1dImpl : public torch::nn::Module {
 };
 TORCH_MODULE(SameConvTranspose1d);
 
+// What a generator is built from (GanSettings' architecture fields).
+struct GeneratorSpec {
+  int width = 64;
+  int kernel_length = 25;
+  GanDecoder decoder = GanDecoder::kOriginal;
+  GanGenerator kind = GanGenerator::kOriginal;
+  double correction_max_hz = 0.0;
+  GanActivation activation = GanActivation::kRelu;
+  static GeneratorSpec of(const GanSettings& settings);
+};
+
 // G_SR / G_RS: 4 strided convs (w, 2w, 4w, 8w), 5 stride-1 convs (8w), 3 transposed convs
 // (16w, 8w, 4w for decoder "original"; 4w, 2w, w for "light") and a transposed conv to 1 channel;
 // ReLU elsewhere; no normalisation. Input and output [B, 1, 16384].
-// kind "original" (the paper): tanh on the last layer, no skip connection, so the output is
+// kind original (the paper): tanh on the last layer, no skip connection, so the output is
 // whatever the bottleneck (16384/256 = 64 positions) can carry of the input.
-// kind "residual" (a departure): the last layer's output is a correction ADDED to the input, and
-// that layer starts at zero, so a new generator is the identity: each output starts as its own
+// kind residual (a departure): the last layer's output is a correction ADDED to the input, and
+// that layer starts small, so a new generator is near the identity: each output starts as its own
 // input and training only learns what to change. The correction is causal: zero before the
 // input's onset (first sample within 20 dB of its peak), since an RIR is silent before its direct
 // sound (without this, small models added sound before the direct sound and moved onsets by up
-// to 17 ms). The paper's form has to rebuild every RIR's
-// fine structure through the bottleneck; small CPU models never learn to and output one
-// input-independent template instead (issue 17).
-// correction_max_hz > 0 (residual only): the correction passes a fixed linear-phase low-pass
-// (Blackman-windowed sinc, stopband below -70 dB from correction_max_hz up, -6 dB at 5/6 of it)
-// before the causal mask, so above correction_max_hz the output is the input itself
-// (gan_settings.h says why).
+// to 17 ms). The paper's form has to rebuild every RIR's fine structure through the bottleneck;
+// small CPU models never learn to and output one input-independent template instead (issue 17).
+// correction_max_hz > 0 (residual, band-gain): the correction passes a fixed linear-phase
+// low-pass (Blackman-windowed sinc, stopband below -70 dB from correction_max_hz up, -6 dB at 5/6
+// of it) before the causal mask, so it adds low-frequency structure only (gan_settings.h says why).
+// kind band-gain (opt-in, not yet the default; a departure): the residual's low-passed correction plus
+// gan_band_gain.h's smooth gain per band and per time knot after the onset, applied to the input's
+// own band signals and predicted from the bottleneck's features: the whole band's levels (direct
+// sound, early energy, decay per band) can change while each input keeps its fine structure. Its
+// output is scaled to the input's peak (the discriminators see peak-normalised RIRs only).
 class GeneratorImpl : public torch::nn::Module {
  public:
-  GeneratorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot,
-                const std::string& decoder = "original", const std::string& kind = "original",
-                double correction_max_hz = 0.0, const std::string& activation = "relu");
+  explicit GeneratorImpl(const GeneratorSpec& spec, GanInit init = GanInit::kGlorot);
   torch::Tensor forward(torch::Tensor x);
+  // Band-gain generators: the log gains [batch, bands, knots] (nepers) of the last forward pass
+  // (training penalises them, --gain-weight); undefined for the other kinds.
+  const torch::Tensor& last_log_gains() const { return last_log_gains_; }
 
  private:
   torch::Tensor activate(const torch::Tensor& x) const;
@@ -103,6 +118,8 @@ class GeneratorImpl : public torch::nn::Module {
   torch::Tensor lowpass_;  // [1, 1, taps] when band-limited, else undefined
   std::vector<SameConv1d> down_;
   std::vector<SameConvTranspose1d> up_;
+  BandGain band_gain_{nullptr};  // band-gain generators only
+  torch::Tensor last_log_gains_;
 };
 TORCH_MODULE(Generator);
 
@@ -110,7 +127,7 @@ TORCH_MODULE(Generator);
 // [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
 class DiscriminatorImpl : public torch::nn::Module {
  public:
-  DiscriminatorImpl(int width, int kernel_length, InitKind init = InitKind::kGlorot);
+  DiscriminatorImpl(int width, int kernel_length, GanInit init = GanInit::kGlorot);
   torch::Tensor forward(torch::Tensor x);
 
  private:
@@ -139,7 +156,7 @@ class TfRmsProp {
 };
 
 // A generator as `settings` describe it (width, kernel, decoder, generator kind, correction band).
-Generator make_generator(const GanSettings& settings, InitKind init);
+Generator make_generator(const GanSettings& settings, GanInit init);
 // The low-pass taps of a band-limited correction (odd length, unit DC gain), at 16 kHz.
 std::vector<float> correction_lowpass_taps(double cutoff_hz);
 // x [batch, 1, n] filtered by taps [1, 1, k] (k odd), centred, 'same' length: the sum

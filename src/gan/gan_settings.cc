@@ -25,6 +25,10 @@ uint64_t parse_seed(const std::string& text, const std::string& context) {
 }
 }  // namespace
 
+void throw_bad_choice_name(const std::string& context, const std::string& text, const std::string& listed) {
+  throw Error(context + ": expected one of " + listed + ", got '" + text + "'");
+}
+
 std::string gan_settings_text(const GanSettings& s) {
   std::ostringstream os;
   os << "format " << kFormatTag << "\n"
@@ -37,17 +41,18 @@ std::string gan_settings_text(const GanSettings& s) {
      << "learning_rate " << format_double(s.learning_rate, 17) << "\n"
      << "disc_learning_rate " << format_double(s.disc_learning_rate, 17) << "\n"
      << "disc_updates " << s.disc_updates << "\n"
-     << "init " << s.init << "\n"
+     << "init " << choice_name(kGanInitNames, s.init) << "\n"
      << "cycle_weight " << format_double(s.cycle_weight, 17) << "\n"
      << "identity_weight " << format_double(s.identity_weight, 17) << "\n"
+     << "gain_weight " << format_double(s.gain_weight, 17) << "\n"
      << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 17) << "\n"
-     << "decoder " << s.decoder << "\n"
-     << "generator " << s.generator << "\n"
+     << "decoder " << choice_name(kGanDecoderNames, s.decoder) << "\n"
+     << "generator " << choice_name(kGanGeneratorNames, s.generator) << "\n"
      << "correction_max_hz " << format_double(s.correction_max_hz, 17) << "\n"
-     << "generator_activation " << s.generator_activation << "\n"
-     << "generator_update " << s.generator_update << "\n"
-     << "disc_augment " << s.disc_augment << "\n"
-     << "precision " << s.precision << "\n"
+     << "generator_activation " << choice_name(kGanActivationNames, s.generator_activation) << "\n"
+     << "generator_update " << choice_name(kGanGeneratorUpdateNames, s.generator_update) << "\n"
+     << "disc_augment " << choice_name(kGanDiscAugmentNames, s.disc_augment) << "\n"
+     << "precision " << choice_name(kGanPrecisionNames, s.precision) << "\n"
      << "warmup_steps " << s.warmup_steps << "\n"
      << "real_list " << s.real_list << "\n"
      << "synthetic_list " << s.synthetic_list << "\n";
@@ -90,42 +95,35 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
     } else if (key == "disc_updates") {
       s.disc_updates = int(parse_int(value, ctx));
     } else if (key == "init") {
-      if (value != "glorot" && value != "he") throw Error(ctx + ": init must be glorot or he");
-      s.init = value;
+      s.init = parse_choice(kGanInitNames, value, ctx);
     } else if (key == "cycle_weight") {
       s.cycle_weight = parse_double(value, ctx);
     } else if (key == "identity_weight") {
       s.identity_weight = parse_double(value, ctx);
+    } else if (key == "gain_weight") {
+      s.gain_weight = parse_double(value, ctx);
     } else if (key == "rmsprop_initial_ms") {
       s.rmsprop_initial_ms = parse_double(value, ctx);
     } else if (key == "decoder") {
-      if (value != "original" && value != "light") throw Error(ctx + ": decoder must be original or light");
-      s.decoder = value;
+      s.decoder = parse_choice(kGanDecoderNames, value, ctx);
     } else if (key == "generator") {
-      if (value != "original" && value != "residual") throw Error(ctx + ": generator must be original or residual");
-      s.generator = value;
+      s.generator = parse_choice(kGanGeneratorNames, value, ctx);
     } else if (key == "correction_max_hz") {
       s.correction_max_hz = parse_double(value, ctx);
       if (!(s.correction_max_hz >= 0 && s.correction_max_hz < 8000)) {
         throw Error(ctx + ": correction_max_hz must be in [0, 8000)");
       }
     } else if (key == "generator_activation") {
-      if (value != "relu" && value != "leaky_relu") throw Error(ctx + ": generator_activation must be relu or leaky_relu");
-      s.generator_activation = value;
+      s.generator_activation = parse_choice(kGanActivationNames, value, ctx);
     } else if (key == "disc_augment") {
-      if (value != "none" && value != "shift-gain-polarity") {
-        throw Error(ctx + ": disc_augment must be none or shift-gain-polarity");
-      }
-      s.disc_augment = value;
+      s.disc_augment = parse_choice(kGanDiscAugmentNames, value, ctx);
     } else if (key == "generator_update") {
-      if (value != "sequential" && value != "joint") throw Error(ctx + ": generator_update must be sequential or joint");
-      s.generator_update = value;
+      s.generator_update = parse_choice(kGanGeneratorUpdateNames, value, ctx);
     } else if (key == "warmup_steps") {
       s.warmup_steps = parse_int(value, ctx);
       if (s.warmup_steps < 0) throw Error(ctx + ": warmup_steps must be >= 0");
     } else if (key == "precision") {
-      if (value != "float32" && value != "bfloat16") throw Error(ctx + ": precision must be float32 or bfloat16");
-      s.precision = value;
+      s.precision = parse_choice(kGanPrecisionNames, value, ctx);
     } else if (key == "real_list") {
       s.real_list = value;
     } else if (key == "synthetic_list") {
@@ -142,13 +140,11 @@ GanSettings parse_gan_settings(const std::string& text, const std::string& where
   return s;
 }
 
-void decoder_multipliers(const std::string& decoder, int multipliers[3]) {
-  if (decoder == "original") {
+void decoder_multipliers(GanDecoder decoder, int multipliers[3]) {
+  if (decoder == GanDecoder::kOriginal) {
     multipliers[0] = 16, multipliers[1] = 8, multipliers[2] = 4;
-  } else if (decoder == "light") {
-    multipliers[0] = 4, multipliers[1] = 2, multipliers[2] = 1;
   } else {
-    throw Error("--decoder must be original or light, got '" + decoder + "'");
+    multipliers[0] = 4, multipliers[1] = 2, multipliers[2] = 1;
   }
 }
 
@@ -166,6 +162,15 @@ void write_gan_settings_file(const std::string& path, const GanSettings& setting
   out.commit();
 }
 
+namespace {
+std::string architecture_text(const GanSettings& s) {
+  return "width " + std::to_string(s.width) + " (decoder " + choice_name(kGanDecoderNames, s.decoder) + ", generator " +
+         choice_name(kGanGeneratorNames, s.generator) + ", correction max " + format_double(s.correction_max_hz, 6) +
+         " Hz, activation " + choice_name(kGanActivationNames, s.generator_activation) + ", kernel " +
+         std::to_string(s.kernel_length) + ")";
+}
+}  // namespace
+
 void check_same_architecture(const GanSettings& expected, const GanSettings& found,
                              const std::string& what) {
   if (expected.width != found.width || expected.kernel_length != found.kernel_length ||
@@ -173,12 +178,7 @@ void check_same_architecture(const GanSettings& expected, const GanSettings& fou
       expected.decoder != found.decoder || expected.generator != found.generator ||
       expected.correction_max_hz != found.correction_max_hz ||
       expected.generator_activation != found.generator_activation) {
-    throw Error(what + ": model width " + std::to_string(found.width) + " (decoder " + found.decoder +
-                ", generator " + found.generator + ", correction max " + format_double(found.correction_max_hz, 6) + " Hz, activation " + found.generator_activation +
-                ", kernel " + std::to_string(found.kernel_length) + "), expected width " +
-                std::to_string(expected.width) + " (decoder " + expected.decoder + ", generator " +
-                expected.generator + ", correction max " + format_double(expected.correction_max_hz, 6) + " Hz, activation " + expected.generator_activation + ", kernel " +
-                std::to_string(expected.kernel_length) + ")");
+    throw Error(what + ": model " + architecture_text(found) + ", expected " + architecture_text(expected));
   }
 }
 

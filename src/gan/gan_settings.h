@@ -2,11 +2,64 @@
 // what a resumed run must agree with. The same text is stored inside each checkpoint.
 #pragma once
 #include <cstdint>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace tsrir {
 
 class OptionsItf;
+
+// The settings' typed choices. Each enum's names (the command line's and the settings file's, one
+// table) are listed once, in the k...Names lists below: GanSettings::Register hands them to
+// RegisterEnum, and the settings file writes and reads the same names, so a value is validated
+// in one place.
+enum class GanInit { kGlorot, kHe };
+enum class GanDecoder { kOriginal, kLight };
+enum class GanGenerator { kOriginal, kResidual, kBandGain };
+enum class GanActivation { kRelu, kLeakyRelu };
+enum class GanGeneratorUpdate { kSequential, kJoint };
+enum class GanDiscAugment { kNone, kShiftGainPolarity };
+enum class GanPrecision { kFloat32, kBfloat16 };
+
+template <typename E>
+using ChoiceNames = std::initializer_list<std::pair<const char*, E>>;
+// Namespace-scope initializer lists: their arrays live as long as the program.
+inline const ChoiceNames<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
+inline const ChoiceNames<GanDecoder> kGanDecoderNames = {{"light", GanDecoder::kLight},
+                                                         {"original", GanDecoder::kOriginal}};
+inline const ChoiceNames<GanGenerator> kGanGeneratorNames = {
+    {"band-gain", GanGenerator::kBandGain}, {"residual", GanGenerator::kResidual}, {"original", GanGenerator::kOriginal}};
+inline const ChoiceNames<GanActivation> kGanActivationNames = {{"relu", GanActivation::kRelu},
+                                                               {"leaky_relu", GanActivation::kLeakyRelu}};
+inline const ChoiceNames<GanGeneratorUpdate> kGanGeneratorUpdateNames = {
+    {"joint", GanGeneratorUpdate::kJoint}, {"sequential", GanGeneratorUpdate::kSequential}};
+inline const ChoiceNames<GanDiscAugment> kGanDiscAugmentNames = {
+    {"none", GanDiscAugment::kNone}, {"shift-gain-polarity", GanDiscAugment::kShiftGainPolarity}};
+inline const ChoiceNames<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
+                                                             {"bfloat16", GanPrecision::kBfloat16}};
+
+// The name of `value` in `names` ("?" if it has none: an enum value outside its table).
+template <typename E>
+const char* choice_name(ChoiceNames<E> names, E value) {
+  for (const auto& c : names) {
+    if (c.second == value) return c.first;
+  }
+  return "?";
+}
+
+[[noreturn]] void throw_bad_choice_name(const std::string& context, const std::string& text, const std::string& listed);
+
+// The value named `text` in `names` (Error naming `context` and the choices otherwise).
+template <typename E>
+E parse_choice(ChoiceNames<E> names, const std::string& text, const std::string& context) {
+  std::string listed;
+  for (const auto& c : names) {
+    if (text == c.first) return c.second;
+    listed += std::string(listed.empty() ? "" : " | ") + c.first;
+  }
+  throw_bad_choice_name(context, text, listed);
+}
 
 struct GanSettings {
   int width = 64;
@@ -21,47 +74,55 @@ struct GanSettings {
   double disc_learning_rate = 0.0;
   int disc_updates = 2;
   // Departures from the original for small CPU models (defaults = the original): kernel init
-  // ("glorot" | "he", used only when a model is created) and the generators' L1 loss weights.
-  std::string init = "glorot";
+  // (used only when a model is created) and the generators' L1 loss weights.
+  GanInit init = GanInit::kGlorot;
   double cycle_weight = 250.0;     // per cycle L1 term (10 * 25)
   double identity_weight = 175.0;  // identity L1 (5 * 35)
+  // Band-gain generators: weight of an L2 penalty on their predicted log gains (nepers^2, mean
+  // over batch, bands and knots) in the generators' loss: a translation changes levels only where
+  // the discriminators ask it to (a departure; the paper has no such term). Files without the
+  // key: 0.
+  double gain_weight = 0.0;
   double rmsprop_initial_ms = 1.0;  // RMSProp's initial mean square: 1 (TF, the original) or 0
-  // Generator up-path channels: "original" (16w, 8w, 4w: the original's code, 66.6 M parameters
-  // per generator at width 64) or "light" (4w, 2w, w: what the original's code comments say,
+  // Generator up-path channels: original (16w, 8w, 4w: the original's code, 66.6 M parameters
+  // per generator at width 64) or light (4w, 2w, w: what the original's code comments say,
   // 41.4 M parameters and 1/3 of the FLOPs at width 64). Part of the architecture.
-  std::string decoder = "original";
-  // "original" (tanh output, the paper) or "residual" (output = input + a learned correction that
-  // starts at zero). Part of the architecture. Settings files without the key are "original".
-  std::string generator = "original";
-  // Residual generators only: the correction is low-passed (nothing left from this frequency up,
-  // in Hz) before it is added, so the translation can change only the low-frequency part of the RIR, where the
-  // geometric simulator's ray assumption fails (room modes, diffraction: the paper's sec. 1-2);
-  // above it the input's own acoustics pass unchanged. 0 = full band. Part of the architecture.
+  GanDecoder decoder = GanDecoder::kOriginal;
+  // original (tanh output, the paper); residual (output = input + a learned correction that
+  // starts near zero); band-gain (the residual's correction plus a smooth gain per frequency band
+  // and per time knot after the input's direct sound, applied to the input's own band signals:
+  // gan_networks.h). Part of the architecture. Settings files without the key: original.
+  GanGenerator generator = GanGenerator::kOriginal;
+  // Residual and band-gain generators: the waveform correction is low-passed (nothing left from
+  // this frequency up, in Hz) before it is added, so it can add only low-frequency structure
+  // (room modes, diffraction: where the geometric simulator's ray assumption fails, the paper's
+  // sec. 1-2); above it a residual generator's output is its input, a band-gain generator's its
+  // input's own band signals times smooth gains. 0 = full band. Part of the architecture.
   // Settings files without the key: 0.
   double correction_max_hz = 0.0;
-  // Generator hidden activation: "relu" (the original) or "leaky_relu" (slope 0.2, as the original's
+  // Generator hidden activation: relu (the original) or leaky_relu (slope 0.2, as the original's
   // discriminators). With plain ReLUs the small activations of RIR inputs (~1e-2: most samples are
   // a quiet tail) die under RMSProp's first lr-sized bias updates, after which the generator gets no
   // gradient and a residual one stays the identity for good. Part of the architecture. Files
   // without the key: relu.
-  std::string generator_activation = "relu";
-  // How the two generators are updated per iteration: "sequential" (the original: a G_SR step and
+  GanActivation generator_activation = GanActivation::kRelu;
+  // How the two generators are updated per iteration: sequential (the original: a G_SR step and
   // then a G_RS step, each on fresh batches with its own forward graph, after the discriminator
-  // steps) or "joint" (one forward of both generators on one pair of batches, one summed loss, both
+  // steps) or joint (one forward of both generators on one pair of batches, one summed loss, both
   // stepped; the discriminators then train on those same translations, detached: CycleGAN's
   // reference implementation, about 1.6x fewer generator passes). Files without the key: sequential.
-  std::string generator_update = "sequential";
-  // Discriminator input augmentation (Zhao et al. 2020's DiffAugment, for small data sets): "none"
-  // (the original) or "shift-gain-polarity": every RIR a discriminator sees, real or translated, in
+  GanGeneratorUpdate generator_update = GanGeneratorUpdate::kSequential;
+  // Discriminator input augmentation (Zhao et al. 2020's DiffAugment, for small data sets): none
+  // (the original) or shift-gain-polarity: every RIR a discriminator sees, real or translated, in
   // its own update and in the generators' adversarial terms, is delayed by 0-50 ms, scaled by
   // 0.6-1 and its polarity flipped at random. None of these changes what the translation must learn
   // (a room's spectral and decay character); they stop a discriminator from memorising the few
   // dozen training RIRs, after which its gradient no longer tells a generator where the real domain
   // lies. Files without the key: none.
-  std::string disc_augment = "none";
+  GanDiscAugment disc_augment = GanDiscAugment::kNone;
   // Linear learning-rate warm-up over the first N steps (0: none, the original).
   long long warmup_steps = 0;
-  std::string precision = "float32";  // training arithmetic: "float32" | "bfloat16" (autocast)
+  GanPrecision precision = GanPrecision::kFloat32;  // training arithmetic (bfloat16: CPU autocast)
   std::string real_list;
   std::string synthetic_list;
 
@@ -75,9 +136,8 @@ struct GanSettings {
 // the translation-fidelity suite.
 GanSettings default_training_settings();
 
-// Width multipliers of the generator's first three transposed convs for `decoder` (Error if the
-// name is neither "original" nor "light").
-void decoder_multipliers(const std::string& decoder, int multipliers[3]);
+// Width multipliers of the generator's first three transposed convs for `decoder`.
+void decoder_multipliers(GanDecoder decoder, int multipliers[3]);
 
 std::string gan_settings_text(const GanSettings& settings);
 // `where` names the file for errors (unknown key, bad value, wrong format version).

@@ -41,7 +41,7 @@ constexpr double kDiscriminatorWeight = 5.0;
 
 const char* const kLogHeader =
     "step,d_real,d_synthetic,g_real,g_synthetic,adv_real,adv_synthetic,cycle_l1_real,"
-    "cycle_l1_synthetic,identity_l1_real,identity_l1_synthetic,step_s";
+    "cycle_l1_synthetic,identity_l1_real,identity_l1_synthetic,gain_rms_db,step_s";
 
 // All RIRs of one domain as a [N, 1, 16384] CPU tensor.
 torch::Tensor load_domain(const std::string& list, const std::string& name, int batch_size,
@@ -113,6 +113,9 @@ class BatchSampler {
 struct StepLosses {
   double d_real = 0, d_synthetic = 0, g_real = 0, g_synthetic = 0, adv_real = 0, adv_synthetic = 0;
   double cycle_real = 0, cycle_synthetic = 0, identity_real = 0, identity_synthetic = 0;
+  // RMS over batch, bands and knots of G_SR's log gains in its translation pass, dB (band-gain
+  // generators; nan for the others).
+  double gain_rms_db = std::numeric_limits<double>::quiet_NaN();
 };
 
 class NonFiniteLoss : public std::runtime_error {
@@ -177,11 +180,11 @@ class Trainer {
  public:
   Trainer(CycleGan& model, BatchSampler& real, BatchSampler& synthetic, torch::Device device)
       : m_(model), real_(real), synthetic_(synthetic), device_(device),
-        bfloat16_(model.settings.precision == "bfloat16") {}
+        bfloat16_(model.settings.precision == GanPrecision::kBfloat16) {}
 
   // What a discriminator sees of x (the identity unless --disc-augment).
   torch::Tensor seen(const torch::Tensor& x, const char* tag, long long draw) const {
-    if (m_.settings.disc_augment == "none") return x;
+    if (m_.settings.disc_augment == GanDiscAugment::kNone) return x;
     return augment_for_discriminator(x, m_.settings.seed, tag, draw);
   }
 
@@ -194,7 +197,7 @@ class Trainer {
     const double d_rate = m_.settings.disc_learning_rate > 0 ? m_.settings.disc_learning_rate : g_rate;
     for (size_t i = 0; i < m_.optimizers.size(); ++i) m_.optimizers[i].set_learning_rate(ramp * (i < 2 ? g_rate : d_rate));
     StepLosses L;
-    if (m_.settings.generator_update == "joint") {
+    if (m_.settings.generator_update == GanGeneratorUpdate::kJoint) {
       const int draws = 2 * m_.settings.disc_updates - 1;
       long long draw = (step_number - 1) * draws;
       joint_step(draw++, &L);
@@ -259,6 +262,8 @@ class Trainer {
       const int64_t b = source.size(0);
       // One batched pass of g over [source; f(target); target].
       const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
+      // The translation pass's gains are the first b rows of the batched pass's.
+      const torch::Tensor gains = translation_gain_penalty(g, b, real_side ? &L->gain_rms_db : nullptr);
       const torch::Tensor translated = out.narrow(0, 0, b);
       const torch::Tensor out_float = out.to(torch::kFloat);
       const torch::Tensor target_cycled = out_float.narrow(0, b, b);
@@ -267,7 +272,8 @@ class Trainer {
       cycle_source = (source - f->forward(translated).to(torch::kFloat)).abs().mean();
       cycle_target = (target - target_cycled).abs().mean();
       identity = (target - target_same).abs().mean();
-      loss = adv + m_.settings.cycle_weight * (cycle_source + cycle_target) + m_.settings.identity_weight * identity;
+      loss = adv + m_.settings.cycle_weight * (cycle_source + cycle_target) + m_.settings.identity_weight * identity +
+             gains;
     }
     const double total = checked(loss, real_side ? "G_real" : "G_synthetic");
     apply(m_.optimizers[real_side ? 0 : 1], loss);
@@ -307,7 +313,9 @@ class Trainer {
         // seeds were re-run with it, bench/RESULTS.md). The identity columns of the loss log
         // read "nan" (not measured).
         const torch::Tensor out_sr = m_.g_real->forward(identity ? torch::cat({s, r}, 0) : s);
+        const torch::Tensor gains_sr = translation_gain_penalty(m_.g_real, b, &L->gain_rms_db);
         const torch::Tensor out_rs = m_.g_synthetic->forward(identity ? torch::cat({r, s}, 0) : r);
+        const torch::Tensor gains_rs = translation_gain_penalty(m_.g_synthetic, b, nullptr);
         fake_r = out_sr.narrow(0, 0, b);
         fake_s = out_rs.narrow(0, 0, b);
         const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
@@ -317,7 +325,9 @@ class Trainer {
         cyc_s = (s - rec_s).abs().mean();
         cyc_r = (r - rec_r).abs().mean();
         const double cw = m_.settings.cycle_weight, iw = m_.settings.identity_weight;
-        const torch::Tensor cycles = cw * (cyc_s + cyc_r);
+        // The gain penalties with the cycle terms: the sum of each generator's own terms (its
+        // gradient is each generator's own loss gradient, as for the cycles).
+        const torch::Tensor cycles = cw * (cyc_s + cyc_r) + gains_sr + gains_rs;
         if (identity) {
           idt_r = (r - out_sr.narrow(0, b, b).to(torch::kFloat)).abs().mean();
           idt_s = (s - out_rs.narrow(0, b, b).to(torch::kFloat)).abs().mean();
@@ -347,6 +357,16 @@ class Trainer {
     }
     L->d_real = discriminator_update(m_.d_real, m_.optimizers[2], r, fake_r.detach(), draw, "D_real");
     L->d_synthetic = discriminator_update(m_.d_synthetic, m_.optimizers[3], s, fake_s.detach(), draw, "D_synthetic");
+  }
+
+  // --gain-weight's term on the first `rows` of a band-gain generator's last pass (its
+  // translations), and their log gains' RMS in dB into *rms_db; zero for the other kinds.
+  torch::Tensor translation_gain_penalty(const gan::Generator& g, int64_t rows, double* rms_db) const {
+    const torch::Tensor& v = g->last_log_gains();
+    if (!v.defined()) return torch::zeros({}, torch::kFloat);
+    const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
+    if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
+    return m_.settings.gain_weight * mean_square;
   }
 
   // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
@@ -445,7 +465,7 @@ std::string format_row(long long step, const StepLosses& L, double seconds) {
   os.precision(9);
   os << step << ',' << L.d_real << ',' << L.d_synthetic << ',' << L.g_real << ',' << L.g_synthetic << ','
      << L.adv_real << ',' << L.adv_synthetic << ',' << L.cycle_real << ',' << L.cycle_synthetic << ','
-     << L.identity_real << ',' << L.identity_synthetic << ',';
+     << L.identity_real << ',' << L.identity_synthetic << ',' << L.gain_rms_db << ',';
   os.precision(4);
   os << seconds;
   return os.str();
@@ -460,28 +480,14 @@ void validate(const GanTrainOptions& o) {
   if (o.checkpoint_every < 1) throw Error("--checkpoint-every must be >= 1");
   if (o.model.disc_updates < 1) throw Error("--disc-updates must be >= 1");
   if (!(o.model.learning_rate > 0) || !std::isfinite(o.model.learning_rate)) throw Error("--learning-rate must be > 0");
-  gan::parse_init_kind(o.model.init);
-  int multipliers[3];
-  decoder_multipliers(o.model.decoder, multipliers);
   if (o.model.rmsprop_initial_ms != 0.0 && o.model.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
   if (!(o.model.cycle_weight >= 0) || !std::isfinite(o.model.cycle_weight)) throw Error("--cycle-weight must be >= 0");
   if (!(o.model.identity_weight >= 0) || !std::isfinite(o.model.identity_weight)) throw Error("--identity-weight must be >= 0");
+  if (!(o.model.gain_weight >= 0) || !std::isfinite(o.model.gain_weight)) throw Error("--gain-weight must be >= 0");
   if (o.model.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
-  if (o.model.generator != "original" && o.model.generator != "residual") {
-    throw Error("--generator must be original or residual, got '" + o.model.generator + "'");
-  }
   if (o.model.correction_max_hz != 0.0) gan::correction_lowpass_taps(o.model.correction_max_hz);
-  if (o.model.disc_augment != "none" && o.model.disc_augment != "shift-gain-polarity") {
-    throw Error("--disc-augment must be none or shift-gain-polarity, got '" + o.model.disc_augment + "'");
-  }
-  if (o.model.generator_update != "sequential" && o.model.generator_update != "joint") {
-    throw Error("--generator-update must be sequential or joint, got '" + o.model.generator_update + "'");
-  }
   if (o.collapse_check_every < 0) throw Error("--collapse-check-every must be >= 0");
-  if (o.model.precision != "float32" && o.model.precision != "bfloat16") {
-    throw Error("--precision must be float32 or bfloat16, got '" + o.model.precision + "'");
-  }
-  if (o.model.precision == "bfloat16" && o.device != ComputeDevice::kCpu) {
+  if (o.model.precision == GanPrecision::kBfloat16 && o.device != ComputeDevice::kCpu) {
     throw Error("--precision=bfloat16 is for --device=cpu");
   }
 }
@@ -513,97 +519,101 @@ void check_resume_settings(const GanSettings& saved, const GanSettings& asked, c
   }
 }
 
-}  // namespace
+// Where a model dir keeps what training writes.
+struct ModelDirPaths {
+  explicit ModelDirPaths(const std::string& dir)
+      : settings((fs::path(dir) / "settings.txt").string()),
+        checkpoint((fs::path(dir) / "checkpoint.pt").string()),
+        log((fs::path(dir) / "loss_log.csv").string()),
+        curves((fs::path(dir) / "loss_curves.svg").string()) {}
+  std::string settings, checkpoint, log, curves;
+};
 
-GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
-  validate(o);
-  tune_memory_for_torch();
-  set_openblas_threads(1);
-  gan::set_torch_threads(o.num_threads);
-  const torch::Device device = gan::torch_device(o.device);
-
+// The settings this run trains with: the options' with the lists made absolute; on --resume
+// checked against the saved ones, whose initialisers are kept (a new learning rate, the one
+// setting a resumed run may change, is written back).
+GanSettings plan_settings(const GanTrainOptions& o, const ModelDirPaths& paths) {
   GanSettings settings = o.model;
   // The original generator has no correction to band-limit: the option is the residual's only.
-  if (settings.generator != "residual") settings.correction_max_hz = 0.0;
+  if (settings.generator == GanGenerator::kOriginal) settings.correction_max_hz = 0.0;
+  // Only band-gain generators have gains to penalise; 0 otherwise, as in the settings of models
+  // made before the option, so that those resume under today's defaults.
+  if (settings.generator != GanGenerator::kBandGain) settings.gain_weight = 0.0;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
-
-  const std::string settings_path = (fs::path(o.model_dir) / "settings.txt").string();
-  const std::string checkpoint_path = (fs::path(o.model_dir) / "checkpoint.pt").string();
-  const std::string log_path = (fs::path(o.model_dir) / "loss_log.csv").string();
-  if (o.resume) {
-    if (!fs::exists(checkpoint_path)) throw Error("--resume: no checkpoint " + checkpoint_path);
-    const GanSettings saved = read_gan_settings_file(settings_path);
-    check_resume_settings(saved, settings, settings_path);
-    // The initialisers only matter when a model is created.
-    settings.init = saved.init;
-    settings.rmsprop_initial_ms = saved.rmsprop_initial_ms;
-    // A new learning rate is the one setting a resumed run may change (a hand-made schedule).
-    if (saved.learning_rate != settings.learning_rate) {
-      log_info("learning rate changed from " + format_double(saved.learning_rate, 10) + " to " +
-               format_double(settings.learning_rate, 10));
-      write_gan_settings_file(settings_path, settings);
+  if (!o.resume) {
+    if (fs::exists(paths.checkpoint)) {
+      throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");
     }
-  } else if (fs::exists(checkpoint_path)) {
-    throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");
+    return settings;
   }
+  if (!fs::exists(paths.checkpoint)) throw Error("--resume: no checkpoint " + paths.checkpoint);
+  const GanSettings saved = read_gan_settings_file(paths.settings);
+  check_resume_settings(saved, settings, paths.settings);
+  // The initialisers only matter when a model is created.
+  settings.init = saved.init;
+  settings.rmsprop_initial_ms = saved.rmsprop_initial_ms;
+  // A new learning rate is the one setting a resumed run may change (a hand-made schedule).
+  if (saved.learning_rate != settings.learning_rate) {
+    log_info("learning rate changed from " + format_double(saved.learning_rate, 10) + " to " +
+             format_double(settings.learning_rate, 10));
+    write_gan_settings_file(paths.settings, settings);
+  }
+  return settings;
+}
 
-  BatchSampler real(o.model.seed, "real", load_domain(o.real_list, "real", o.model.batch_size, o.num_threads));
-  BatchSampler synthetic(o.model.seed, "synthetic",
-                         load_domain(o.synthetic_list, "synthetic", o.model.batch_size, o.num_threads));
-
-  // The model dir is the toolkit's: never one holding a user's files, never an input (its lists were
-  // noted as inputs while loading the domains).
-  claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
-  torch::manual_seed(o.model.seed);
-  CycleGan model(settings, device);
-  GanTrainResult result;
-  long long step = 0;
+// A fresh model dir (its settings and an empty loss log written), or the resumed checkpoint
+// loaded into `model` (the log cut back to its step). Returns the step the model is at.
+long long open_model(const GanTrainOptions& o, const ModelDirPaths& paths, CycleGan& model) {
   if (o.resume) {
-    step = gan::load_checkpoint(checkpoint_path, model);
-    log_info("resumed " + checkpoint_path + " at step " + std::to_string(step));
-    truncate_loss_log(log_path, step);
-  } else {
-    std::error_code ec;
-    fs::create_directories(o.model_dir, ec);
-    if (!fs::is_directory(o.model_dir)) throw Error("cannot create model dir " + o.model_dir);
-    write_gan_settings_file(settings_path, settings);
-    truncate_loss_log(log_path, 0);
-    log_info("model width " + std::to_string(o.model.width) + ", decoder " + o.model.decoder + ": " +
-             std::to_string(gan::count_parameters(*model.g_real)) + " parameters per generator, " +
-             std::to_string(gan::count_parameters(*model.d_real)) + " per discriminator");
+    const long long step = gan::load_checkpoint(paths.checkpoint, model);
+    log_info("resumed " + paths.checkpoint + " at step " + std::to_string(step));
+    truncate_loss_log(paths.log, step);
+    return step;
   }
-  result.first_step = step + 1;
-  result.last_step = step;
-  long long checkpoint_step = step;
-  if (step >= o.steps) {
-    log_info("the checkpoint is already at step " + std::to_string(step) + " >= --steps");
-    result.peak_rss_mb = peak_rss_mb();
-    return result;
-  }
+  std::error_code ec;
+  fs::create_directories(o.model_dir, ec);
+  if (!fs::is_directory(o.model_dir)) throw Error("cannot create model dir " + o.model_dir);
+  write_gan_settings_file(paths.settings, model.settings);
+  truncate_loss_log(paths.log, 0);
+  log_info("model width " + std::to_string(o.model.width) + ", decoder " + choice_name(kGanDecoderNames, o.model.decoder) +
+           ", generator " + choice_name(kGanGeneratorNames, o.model.generator) + ": " +
+           std::to_string(gan::count_parameters(*model.g_real)) + " parameters per generator, " +
+           std::to_string(gan::count_parameters(*model.d_real)) + " per discriminator");
+  return 0;
+}
 
-  std::ofstream log(log_path, std::ios::app);
-  if (!log) throw Error("cannot append to " + log_path);
-  Trainer trainer(model, real, synthetic, device);
-  const torch::Tensor probe =
-      synthetic.rirs().narrow(0, 0, std::min<int64_t>(8, synthetic.rirs().size(0))).to(device);
-  StopRequestGuard stop;
+// The steps after the model's up to --steps: each logged, the collapse guard and the checkpoints
+// on their schedules, progress on stderr; stops between steps on SIGINT/SIGTERM with a checkpoint.
+class StepLoop {
+ public:
   using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  auto last_progress = start;
-  double total_step_s = 0.0;
-  auto save = [&](long long s) {
-    if (!parameters_finite(model)) {
-      throw NonFiniteLoss("the parameters after step " + std::to_string(s) + " are not finite");
+  StepLoop(const GanTrainOptions& o, const ModelDirPaths& paths, CycleGan& model, BatchSampler& real,
+           BatchSampler& synthetic, torch::Device device, long long step)
+      : o_(o), paths_(paths), model_(model), trainer_(model, real, synthetic, device),
+        probe_(synthetic.rirs().narrow(0, 0, std::min<int64_t>(8, synthetic.rirs().size(0))).to(device)),
+        step_(step), checkpoint_step_(step) {
+    result_.first_step = step + 1;
+    result_.last_step = step;
+  }
+
+  GanTrainResult run() {
+    std::ofstream log(paths_.log, std::ios::app);
+    if (!log) throw Error("cannot append to " + paths_.log);
+    // The curves are drawn however training ends (done, interrupted, collapse, non-finite loss).
+    CurvesOnExit curves_on_exit{log, paths_.log, paths_.curves};
+    try {
+      train_steps(log);
+      if (checkpoint_step_ != step_) save();
+    } catch (const NonFiniteLoss& e) {
+      log.flush();
+      throw Error("step " + std::to_string(step_ + 1) + ": " + e.what() + "; training stopped. The last good checkpoint " +
+                  kept_checkpoint(true) + " is kept; lower --learning-rate or check the input RIRs");
     }
-    if (!generators_finite_on(model, probe)) {
-      throw NonFiniteLoss("the generators after step " + std::to_string(s) + " give outputs that are not finite");
-    }
-    gan::save_checkpoint(checkpoint_path, model, s);
-    checkpoint_step = s;
-  };
-  const std::string curves_path = (fs::path(o.model_dir) / "loss_curves.svg").string();
-  // The curves are drawn however training ends (done, interrupted, collapse, non-finite loss).
+    return finish();
+  }
+
+ private:
   struct CurvesOnExit {
     std::ofstream& log;
     std::string csv, svg;
@@ -614,67 +624,126 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
       } catch (...) {
       }
     }
-  } curves_on_exit{log, log_path, curves_path};
-  try {
-    while (step < o.steps) {
+  };
+
+  void train_steps(std::ofstream& log) {
+    StopRequestGuard stop;
+    while (step_ < o_.steps) {
       if (stop.stop_requested()) {
-        result.interrupted = true;
-        break;
+        result_.interrupted = true;
+        return;
       }
       const auto t0 = Clock::now();
-      const StepLosses L = trainer.step(step + 1);
-      ++step;
+      const StepLosses losses = trainer_.step(step_ + 1);
+      ++step_;
       const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
-      total_step_s += dt;
-      log << format_row(step, L, dt) << '\n' << std::flush;
-      result.last_step = step;
-      if (o.collapse_check_every > 0 && step % o.collapse_check_every == 0) {
-        const std::string why = collapse_reason(model.g_real, probe);
-        if (!why.empty()) {
-          throw Error("step " + std::to_string(step) + ": generator collapse: " + why +
-                      ". Training stopped; the last checkpoint " +
-                      (checkpoint_step > 0 ? "(step " + std::to_string(checkpoint_step) + ") is kept"
-                                           : std::string("(none was written)")) +
-                      ". Try another --seed, a longer --warmup-steps, a lower --learning-rate or "
-                      "--generator=residual (--collapse-check-every=0 disables this check)");
-        }
-      }
-      if (step % o.checkpoint_every == 0) save(step);
-      const auto now = Clock::now();
-      if (step == result.first_step || step == o.steps ||
-          std::chrono::duration<double>(now - last_progress).count() >= o.progress_interval_s) {
-        last_progress = now;
-        const double per_step = total_step_s / double(step - result.first_step + 1);
-        std::ostringstream os;
-        os.precision(4);
-        os << "step " << step << "/" << o.steps << "  D_R " << L.d_real << "  D_S " << L.d_synthetic
-           << "  G_SR " << L.g_real << "  G_RS " << L.g_synthetic << "  " << per_step << " s/step, "
-           << "ETA " << int(per_step * double(o.steps - step)) << " s";
-        log_info(os.str());
-      }
+      total_step_s_ += dt;
+      log << format_row(step_, losses, dt) << '\n' << std::flush;
+      result_.last_step = step_;
+      if (o_.collapse_check_every > 0 && step_ % o_.collapse_check_every == 0) check_collapse();
+      if (step_ % o_.checkpoint_every == 0) save();
+      report_progress(losses);
     }
-    if (checkpoint_step != step) save(step);
-  } catch (const NonFiniteLoss& e) {
-    log.flush();
-    throw Error("step " + std::to_string(step + 1) + ": " + e.what() +
-                "; training stopped. The last good checkpoint " +
-                (checkpoint_step > 0 ? "(step " + std::to_string(checkpoint_step) + ", " + checkpoint_path + ")"
-                                     : std::string("(none was written)")) +
-                " is kept; lower --learning-rate or check the input RIRs");
   }
-  if (result.interrupted) {
-    log_warning("interrupted after step " + std::to_string(step) + "; checkpoint written to " +
-                checkpoint_path + " (continue with --resume)");
+
+  void check_collapse() const {
+    const std::string why = collapse_reason(model_.g_real, probe_);
+    if (why.empty()) return;
+    throw Error("step " + std::to_string(step_) + ": generator collapse: " + why + ". Training stopped; the last checkpoint " +
+                kept_checkpoint(false) +
+                ". Try another --seed, a longer --warmup-steps, a lower --learning-rate or "
+                "--generator=residual (--collapse-check-every=0 disables this check)");
   }
-  const long long steps_run = step - result.first_step + 1;
-  result.mean_step_s = steps_run > 0 ? total_step_s / double(steps_run) : 0.0;
-  result.peak_rss_mb = peak_rss_mb();
-  std::ostringstream os;
-  os.precision(4);
-  os << "done: steps " << result.first_step << ".." << step << ", " << result.mean_step_s
-     << " s/step, peak RSS " << result.peak_rss_mb << " MB";
-  log_info(os.str());
-  return result;
+
+  // "(step N) is kept" material: which checkpoint survives a stop.
+  std::string kept_checkpoint(bool with_path) const {
+    if (checkpoint_step_ == 0) return "(none was written)";
+    return "(step " + std::to_string(checkpoint_step_) + (with_path ? ", " + paths_.checkpoint : std::string()) + ")" +
+           (with_path ? "" : " is kept");
+  }
+
+  void save() {
+    if (!parameters_finite(model_)) {
+      throw NonFiniteLoss("the parameters after step " + std::to_string(step_) + " are not finite");
+    }
+    if (!generators_finite_on(model_, probe_)) {
+      throw NonFiniteLoss("the generators after step " + std::to_string(step_) + " give outputs that are not finite");
+    }
+    gan::save_checkpoint(paths_.checkpoint, model_, step_);
+    checkpoint_step_ = step_;
+  }
+
+  void report_progress(const StepLosses& losses) {
+    const auto now = Clock::now();
+    if (step_ != result_.first_step && step_ != o_.steps &&
+        std::chrono::duration<double>(now - last_progress_).count() < o_.progress_interval_s) {
+      return;
+    }
+    last_progress_ = now;
+    const double per_step = total_step_s_ / double(step_ - result_.first_step + 1);
+    std::ostringstream os;
+    os.precision(4);
+    os << "step " << step_ << "/" << o_.steps << "  D_R " << losses.d_real << "  D_S " << losses.d_synthetic
+       << "  G_SR " << losses.g_real << "  G_RS " << losses.g_synthetic << "  " << per_step << " s/step, "
+       << "ETA " << int(per_step * double(o_.steps - step_)) << " s";
+    log_info(os.str());
+  }
+
+  GanTrainResult finish() {
+    if (result_.interrupted) {
+      log_warning("interrupted after step " + std::to_string(step_) + "; checkpoint written to " + paths_.checkpoint +
+                  " (continue with --resume)");
+    }
+    const long long steps_run = step_ - result_.first_step + 1;
+    result_.mean_step_s = steps_run > 0 ? total_step_s_ / double(steps_run) : 0.0;
+    result_.peak_rss_mb = peak_rss_mb();
+    std::ostringstream os;
+    os.precision(4);
+    os << "done: steps " << result_.first_step << ".." << step_ << ", " << result_.mean_step_s << " s/step, peak RSS "
+       << result_.peak_rss_mb << " MB";
+    log_info(os.str());
+    return result_;
+  }
+
+  const GanTrainOptions& o_;
+  const ModelDirPaths& paths_;
+  CycleGan& model_;
+  Trainer trainer_;
+  const torch::Tensor probe_;
+  long long step_, checkpoint_step_;
+  GanTrainResult result_;
+  double total_step_s_ = 0.0;
+  Clock::time_point last_progress_ = Clock::now();
+};
+
+}  // namespace
+
+GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
+  validate(o);
+  tune_memory_for_torch();
+  set_openblas_threads(1);
+  gan::set_torch_threads(o.num_threads);
+  const torch::Device device = gan::torch_device(o.device);
+  const ModelDirPaths paths(o.model_dir);
+  const GanSettings settings = plan_settings(o, paths);
+  BatchSampler real(o.model.seed, "real", load_domain(o.real_list, "real", o.model.batch_size, o.num_threads));
+  BatchSampler synthetic(o.model.seed, "synthetic",
+                         load_domain(o.synthetic_list, "synthetic", o.model.batch_size, o.num_threads));
+  // The model dir is the toolkit's: never one holding a user's files, never an input (its lists were
+  // noted as inputs while loading the domains).
+  claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
+  torch::manual_seed(o.model.seed);
+  CycleGan model(settings, device);
+  const long long step = open_model(o, paths, model);
+  if (step >= o.steps) {
+    log_info("the checkpoint is already at step " + std::to_string(step) + " >= --steps");
+    GanTrainResult result;
+    result.first_step = step + 1;
+    result.last_step = step;
+    result.peak_rss_mb = peak_rss_mb();
+    return result;
+  }
+  return StepLoop(o, paths, model, real, synthetic, device, step).run();
 }
 
 }  // namespace tsrir

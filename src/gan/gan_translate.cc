@@ -29,18 +29,8 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   if (o.keep_length != -1 && (o.keep_length < 1 || o.keep_length > (long long)kGanSliceLength)) {
     throw Error("--keep-length must be 'input' or in [1, 16384], got " + std::to_string(o.keep_length));
   }
-  std::string network;
-  if (o.direction == "synthetic-to-real") {
-    network = "g_real";
-  } else if (o.direction == "real-to-synthetic") {
-    network = "g_synthetic";
-  } else {
-    throw Error("--direction must be synthetic-to-real or real-to-synthetic, got '" + o.direction + "'");
-  }
-  if (o.precision != "float32" && o.precision != "bfloat16") {
-    throw Error("--precision must be float32 or bfloat16, got '" + o.precision + "'");
-  }
-  const torch::ScalarType dtype = o.precision == "bfloat16" ? torch::kBFloat16 : torch::kFloat32;
+  const std::string network = o.direction == GanDirection::kSyntheticToReal ? "g_real" : "g_synthetic";
+  const torch::ScalarType dtype = o.precision == GanPrecision::kBfloat16 ? torch::kBFloat16 : torch::kFloat32;
   tune_memory_for_torch();
   set_openblas_threads(1);
   gan::set_torch_threads(o.num_threads);
@@ -103,9 +93,9 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
       rir.sample_rate_hz = kGanSampleRateHz;
       const size_t length = o.keep_length < 0 ? inputs[i].length : size_t(o.keep_length);
       float scale = o.restore_level ? float(inputs[i].peak) : 1.0f;
-      if (settings.generator == "residual") {
-        // A residual output is its peak-normalised input plus a correction, so its peak can pass
-        // 1: scale it back to the largest 16-bit value (32767/32768), the training data's peak.
+      if (settings.generator != GanGenerator::kOriginal) {
+        // A residual or band-gain output is its peak-normalised input plus what the generator
+        // added, so its peak can pass 1: scale it back to the largest 16-bit value (32767/32768), the training data's peak.
         constexpr float kFullScale = 32767.0f / 32768.0f;
         float peak = 0.0f;
         for (size_t k = 0; k < length; ++k) peak = std::max(peak, std::abs(out[k]));

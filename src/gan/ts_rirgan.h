@@ -13,6 +13,11 @@ namespace tsrir {
 
 class OptionsItf;
 
+// Which generator translates: G_SR (the paper's use) or G_RS.
+enum class GanDirection { kSyntheticToReal, kRealToSynthetic };
+inline const ChoiceNames<GanDirection> kGanDirectionNames = {{"synthetic-to-real", GanDirection::kSyntheticToReal},
+                                                             {"real-to-synthetic", GanDirection::kRealToSynthetic}};
+
 struct GanTrainOptions {
   std::string real_list;        // rir scp / rir_list / audio file: the "real" domain
   std::string synthetic_list;   // the "synthetic" domain
@@ -52,8 +57,7 @@ struct GanTranslateOptions {
   std::string model;            // model dir (uses its checkpoint.pt) or a checkpoint file
   std::string input_list;
   std::string out_dir;
-  // "synthetic-to-real" (G_SR, the paper's use) or "real-to-synthetic" (G_RS).
-  std::string direction = "synthetic-to-real";
+  GanDirection direction = GanDirection::kSyntheticToReal;
   int batch_size = 16;
   // Output length in samples at 16 kHz (the original keeps 16000 of the 16384 generated), or -1:
   // the input's length after resampling to 16 kHz, capped at 16384.
@@ -64,10 +68,10 @@ struct GanTranslateOptions {
   SampleFormat format = SampleFormat::kFloat32;
   ComputeDevice device = ComputeDevice::kCpu;
   int num_threads = 1;
-  // "float32", or "bfloat16": weights and activations in bfloat16 with float32 accumulation
+  // float32, or bfloat16: weights and activations in bfloat16 with float32 accumulation
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
   // (tests/gan/gan_networks_test.cc). Slower than float32 on CPUs without bfloat16 arithmetic.
-  std::string precision = "float32";
+  GanPrecision precision = GanPrecision::kFloat32;
 
   void Register(OptionsItf* opts);  // gan_options.cc; input list and out dir are positional
 };

@@ -46,50 +46,90 @@ std::vector<tsrir::Signal> signals_of(const std::vector<FidelityRir>& rirs) {
 
 }  // namespace
 
+namespace {
+// The held-out sets of a seed: what run_fidelity_suite translates and measures against.
+struct HeldOutOfSeed {
+  std::vector<FidelityRir> test_syn;
+  FidelityReference reference;
+};
+HeldOutOfSeed held_out_of_seed(const FidelitySuiteOptions& o) {
+  const FidelityDomainSpec synthetic_spec, real_spec = real_domain_spec(o.effect);
+  const uint64_t base = o.seed * 16;
+  HeldOutOfSeed h;
+  h.test_syn = make_fidelity_domain(synthetic_spec, "test_syn", o.test_count, base + 3);
+  h.reference.synthetic = signals_of(make_fidelity_domain(synthetic_spec, "ref_syn", o.reference_count, base + 4));
+  h.reference.real = signals_of(make_fidelity_domain(real_spec, "ref_real", o.reference_count, base + 5));
+  return h;
+}
+}  // namespace
+
+FidelitySuiteResult measure_fidelity_work_dir(const FidelitySuiteOptions& o) {
+  FidelitySuiteResult result;
+  const HeldOutOfSeed h = held_out_of_seed(o);
+  std::map<std::string, tsrir::Signal> by_id;
+  for (auto& s : load_scp(o.work_dir + "/sr/rir.scp")) by_id[s.id] = std::move(s);
+  std::vector<tsrir::Signal> inputs = signals_of(h.test_syn), outputs;
+  for (const auto& in : inputs) {
+    auto it = by_id.find(in.id);
+    if (it == by_id.end()) {
+      result.error = "gas-to-real wrote no output for " + in.id;
+      return result;
+    }
+    outputs.push_back(it->second);
+  }
+  result.report = evaluate_fidelity(o.effect, inputs, outputs, h.reference);
+  return result;
+}
+
 FidelitySuiteResult run_fidelity_suite(const FidelitySuiteOptions& o) {
   FidelitySuiteResult result;
   const std::string d = o.work_dir;
   tsrir::remove_tree(d);
   fs::create_directories(d);
-  FidelityDomainSpec synthetic_spec, real_spec;
-  real_spec.hidden_effect = true;
-  // Four independent draws: no RIR is in two sets, held-out sets are not trained on.
+  const FidelityDomainSpec synthetic_spec, real_spec = real_domain_spec(o.effect);
+  // Independent draws (seeds base + 1 ... base + 5): no RIR is in two sets, held-out sets are not
+  // trained on.
   const uint64_t base = o.seed * 16;
   const auto train_syn = make_fidelity_domain(synthetic_spec, "syn", o.train_count, base + 1);
   const auto train_real = make_fidelity_domain(real_spec, "real", o.train_count, base + 2);
-  const auto test_syn = make_fidelity_domain(synthetic_spec, "test_syn", o.test_count, base + 3);
-  const auto test_real = make_fidelity_domain(real_spec, "test_real", o.test_count, base + 4);
   const std::string train_syn_scp = write_fidelity_domain(train_syn, d + "/train_syn");
   const std::string train_real_scp = write_fidelity_domain(train_real, d + "/train_real");
-  const std::string test_syn_scp = write_fidelity_domain(test_syn, d + "/test_syn");
+  const std::string test_syn_scp = write_fidelity_domain(held_out_of_seed(o).test_syn, d + "/test_syn");
 
   const auto t0 = std::chrono::steady_clock::now();
   result.error = run_logged(o.bin_dir + "/ts-rirgan-train --real=" + train_real_scp + " --synthetic=" + train_syn_scp +
                                 " --num-threads=" + std::to_string(o.num_threads) + " --progress-interval=30 " +
                                 o.train_args + " --seed=" + std::to_string(o.seed) + " " + d + "/model",
                             d + "/train.log");
-  result.train_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double train_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result.error.empty()) {
     result.error = run_logged(o.bin_dir + "/gas-to-real --model=" + d + "/model --keep-length=input --num-threads=" +
                                   std::to_string(o.num_threads) + " " + test_syn_scp + " " + d + "/sr",
                               d + "/translate.log");
   }
-  if (result.error.empty()) {
-    std::map<std::string, tsrir::Signal> by_id;
-    for (auto& s : load_scp(d + "/sr/rir.scp")) by_id[s.id] = std::move(s);
-    std::vector<tsrir::Signal> inputs = signals_of(test_syn), outputs;
-    for (const auto& in : inputs) {
-      auto it = by_id.find(in.id);
-      if (it == by_id.end()) {
-        result.error = "gas-to-real wrote no output for " + in.id;
-        break;
-      }
-      outputs.push_back(it->second);
-    }
-    if (result.error.empty()) result.report = evaluate_fidelity(inputs, outputs, signals_of(test_real));
-  }
+  if (result.error.empty()) result = measure_fidelity_work_dir(o);
+  result.train_s = train_s;
   if (!o.keep && result.passed()) tsrir::remove_tree(d);
   return result;
+}
+
+FidelityDomainSpec real_domain_spec(HiddenEffect effect) {
+  FidelityDomainSpec s;
+  s.hidden_effect = true;
+  s.effect = effect;
+  return s;
+}
+
+HeldOutSets held_out_sets(const FidelityDomainSpec& real_spec, uint64_t seed, int count, int reference_count) {
+  const FidelityDomainSpec synthetic_spec;
+  HeldOutSets h;
+  h.synthetic = signals_of(make_fidelity_domain(synthetic_spec, "test_syn", count, seed));
+  h.reference.synthetic = signals_of(make_fidelity_domain(synthetic_spec, "ref_syn", reference_count, seed + 1));
+  h.reference.real = signals_of(make_fidelity_domain(real_spec, "ref_real", reference_count, seed + 2));
+  // Same ids and seed with the effect on: the generator draws the acoustics first, so these are
+  // the synthetic inputs with each one's own hidden effect added (a perfect translation).
+  h.oracle = signals_of(make_fidelity_domain(real_spec, "test_syn", count, seed));
+  return h;
 }
 
 }  // namespace tsrir_test

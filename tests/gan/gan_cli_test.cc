@@ -125,6 +125,9 @@ TEST_F(GanCli, CollapseCheckStopsTrainingWithAClearMessage) {
   const std::string svg = slurp(dir_ + "/fine/loss_curves.svg");
   EXPECT_NE(svg.find("<polyline"), std::string::npos);
   EXPECT_NE(slurp(dir_ + "/fine/settings.txt").find("generator residual"), std::string::npos);
+  // A residual generator has no gains: its settings say gain weight 0 (as those of models made
+  // before the option), whatever the default for band-gain generators.
+  EXPECT_NE(slurp(dir_ + "/fine/settings.txt").find("\ngain_weight 0\n"), std::string::npos);
   // The default identity weight 0 skips the identity passes: its columns read nan, the figure names
   // them in a note instead of drawing an empty panel (three panels), and no coordinate is nan.
   const std::string log = slurp(dir_ + "/fine/loss_log.csv");
@@ -267,16 +270,16 @@ TEST_F(GanCli, NonFiniteLossStopsAndKeepsCheckpoint) {
   EXPECT_NE(r.err.find("not finite"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("last good checkpoint (step"), std::string::npos) << r.err;
   // No non-finite loss was logged (the identity columns read nan by design at the default
-  // identity weight 0: not computed).
+  // identity weight 0: not computed; gain_rms_db is nan for generators without band gains).
   std::istringstream log(slurp(dir_ + "/m/loss_log.csv"));
   std::string row;
   while (std::getline(log, row)) {
     std::vector<std::string> cells;
     std::istringstream fields(row);
     for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 12u) << row;
+    ASSERT_EQ(cells.size(), 13u) << row;
     for (size_t c = 0; c < cells.size(); ++c) {
-      if (c == 9 || c == 10) continue;  // identity_l1_real, identity_l1_synthetic
+      if (c == 9 || c == 10 || c == 11) continue;  // identity_l1_real, identity_l1_synthetic, gain_rms_db
       EXPECT_EQ(cells[c].find("nan"), std::string::npos) << row;
       EXPECT_EQ(cells[c].find("inf"), std::string::npos) << row;
     }
@@ -372,8 +375,8 @@ TEST_F(GanCli, LightDecoderAndBfloat16) {
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("--warmup-steps=100"), std::string::npos) << r.err;
   EXPECT_NE(run(train("--steps=1 --warmup-steps=-1", "m3"), dir_).status, 0);
-  EXPECT_NE(run(train("--steps=1 --decoder=heavy", "m2"), dir_).err.find("light | original"), std::string::npos);
-  EXPECT_NE(run(train("--steps=1 --precision=half", "m2"), dir_).err.find("float32 | bfloat16"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --decoder=heavy", "m2"), dir_).err.find("light, original"), std::string::npos);
+  EXPECT_NE(run(train("--steps=1 --precision=half", "m2"), dir_).err.find("float32, bfloat16"), std::string::npos);
 
   const std::string model = " --model=" + dir_ + "/m --keep-length=input ";
   ASSERT_EQ(run(kBin + "/gas-to-real" + model + synthetic_ + " " + dir_ + "/f32", dir_).status, 0);

@@ -21,8 +21,11 @@ std::string fields(const GanSettings& s) {
   };
   return std::to_string(s.width) + " " + std::to_string(s.kernel_length) + " " + std::to_string(s.slice_length) + " " +
          bits(s.sample_rate_hz) + " " + std::to_string(s.batch_size) + " " + std::to_string(s.seed) + " " +
-         bits(s.learning_rate) + " " + std::to_string(s.disc_updates) + " " + s.init + " " + bits(s.cycle_weight) + " " +
-         bits(s.identity_weight) + " " + bits(s.rmsprop_initial_ms) + " " + s.decoder + " " + s.precision + " " + std::to_string(s.warmup_steps) + " [" + s.real_list + "] [" + s.synthetic_list + "]";
+         bits(s.learning_rate) + " " + std::to_string(s.disc_updates) + " " + choice_name(kGanInitNames, s.init) + " " +
+         bits(s.cycle_weight) + " " + bits(s.identity_weight) + " " + bits(s.rmsprop_initial_ms) + " " +
+         choice_name(kGanDecoderNames, s.decoder) + " " + choice_name(kGanGeneratorNames, s.generator) + " " +
+         choice_name(kGanPrecisionNames, s.precision) + " " + std::to_string(s.warmup_steps) + " [" + s.real_list +
+         "] [" + s.synthetic_list + "]";
 }
 
 }  // namespace
