@@ -218,12 +218,11 @@ std::vector<std::vector<float>> wav_reverberate_channels(
                                start_times_s, offsets_s, config);
 }
 
-long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
-                              const std::string& output_wx) {
-  const std::vector<std::string> additive_rx = split_comma_list(config.additive_signals);
-  const std::vector<double> snrs = parse_number_list(config.snrs, "snrs");
-  const std::vector<double> start_times = parse_number_list(config.start_times, "start-times");
-  const std::vector<double> offsets = parse_number_list(config.additive_offsets, "additive-offsets");
+namespace {
+// --additive-signals, --snrs, --start-times and --additive-offsets agree entry by entry.
+void check_additive_lists(const WavReverberateOptions& config, const std::vector<std::string>& additive_rx,
+                          const std::vector<double>& snrs, const std::vector<double>& start_times,
+                          const std::vector<double>& offsets) {
   if (!additive_rx.empty()) {
     if (config.snrs.empty() || config.start_times.empty())
       throw Error("--additive-signals requires --snrs and --start-times");
@@ -236,6 +235,16 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
   } else if (!offsets.empty()) {
     throw Error("--additive-offsets given without --additive-signals");
   }
+}
+}  // namespace
+
+long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
+                              const std::string& output_wx) {
+  const std::vector<std::string> additive_rx = split_comma_list(config.additive_signals);
+  const std::vector<double> snrs = parse_number_list(config.snrs, "snrs");
+  const std::vector<double> start_times = parse_number_list(config.start_times, "start-times");
+  const std::vector<double> offsets = parse_number_list(config.additive_offsets, "additive-offsets");
+  check_additive_lists(config, additive_rx, snrs, start_times, offsets);
 
   // Kaldi's numerics are those of its whole-signal computation: no passes over the file.
   const double max_in_memory_s = config.reverb.kaldi_compat ? 1e300 : config.max_in_memory_s;
