@@ -1,7 +1,8 @@
 // The TS-RIRGAN programs' options, registered by their library structs (util/options.h), so that
 // ts-rirgan-train and gas-to-real are thin mains and every option is named, checked and documented
-// here once. Choices are registered as typed choices: a wrong value is refused at parse time with
-// the list of valid ones, and --help shows them.
+// here once (the model's own, GanSettings::Register, is beside its settings file in gan_settings.cc).
+// Choices are registered as typed choices: a wrong value is refused at parse time with the list of
+// valid ones, and --help shows them.
 #include <string>
 
 #include "gan/compute_device.h"
@@ -31,47 +32,6 @@ GanSettings default_training_settings() {
   s.gain_weight = 1.0;
   s.generator_update = GanGeneratorUpdate::kJoint;  // paper: sequential
   return s;
-}
-
-void GanSettings::Register(OptionsItf* opts) {
-  opts->Register("width", &width, "Model width (64 = the paper's model; 4-16 for CPU experiments)");
-  opts->RegisterEnum("decoder", &decoder, kGanDecoderNames,
-                  "Generator up path: original (16w,8w,4w channels: the original's code) or light "
-                  "(4w,2w,w: its code comments; 41.4 M instead of 66.6 M parameters at width 64, 1/3 of the FLOPs)");
-  opts->Register("batch-size", &batch_size, "RIRs per batch (the paper's is 64)");
-  CommonOptions(opts).seed(&seed, "the initialisation and batch order");
-  opts->Register("learning-rate", &learning_rate, "Generators' RMSProp learning rate (the paper's: 3e-5)");
-  opts->Register("disc-learning-rate", &disc_learning_rate,
-                 "Discriminators' RMSProp learning rate (0 = --learning-rate, the paper)");
-  opts->Register("disc-updates", &disc_updates, "Discriminator updates per generator update (the paper: 2)");
-  opts->RegisterEnum("init", &init, kGanInitNames, "Kernel init of a new model (the paper: glorot)");
-  opts->Register("rmsprop-initial-ms", &rmsprop_initial_ms,
-                 "RMSProp's initial mean square of a new model: 0 or 1 (TF1, the paper)");
-  opts->Register("cycle-weight", &cycle_weight, "Generator loss weight per cycle L1 term (the paper: 250)");
-  opts->Register("identity-weight", &identity_weight, "Generator loss weight of the identity L1 term (the paper: 175; at 0 the identity passes are "
-                 "skipped, a third fewer generator passes per joint step, and the log's identity columns read nan)");
-  opts->Register("gain-weight", &gain_weight,
-                 "Band-gain generators: weight of the L2 penalty on their log gains (nepers^2) in the generators' loss "
-                 "(the paper has no such term)");
-  opts->Register("warmup-steps", &warmup_steps, "Ramp the learning rates linearly over the first N steps (0 = none, the paper)");
-  opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
-                  "Training arithmetic: bfloat16 = CPU autocast, bfloat16 convolutions with float32 weights, "
-                  "gradients and losses; faster only on CPUs with AVX512-BF16/AMX (bench/RESULTS.md)");
-  opts->RegisterEnum("generator", &generator, kGanGeneratorNames,
-                  "original (the paper: tanh output rebuilt through the bottleneck), residual (output = "
-                  "input + a learned correction, zero before the input's direct sound) or band-gain (the residual's "
-                  "correction + a smooth gain per band and time after the direct sound on the input's own band "
-                  "signals: the whole band's levels can change)");
-  opts->Register("correction-max-hz", &correction_max_hz,
-                 "Residual and band-gain generators: the waveform correction is low-passed, nothing left from this frequency up "
-                 "(Hz; 0 = full band; the paper has no such limit)");
-  opts->RegisterEnum("generator-activation", &generator_activation, kGanActivationNames,
-                  "Generator hidden activation (the paper: relu; leaky_relu has slope 0.2)");
-  opts->RegisterEnum("disc-augment", &disc_augment, kGanDiscAugmentNames,
-                  "Discriminator input augmentation (the paper: none; DiffAugment-style random delay, gain, polarity)");
-  opts->RegisterEnum("generator-update", &generator_update, kGanGeneratorUpdateNames,
-                  "sequential (the paper: G_SR then G_RS, each on fresh batches) or joint (CycleGAN's "
-                  "reference: both generators from one forward, one summed loss)");
 }
 
 void GanTrainOptions::Register(OptionsItf* opts) {

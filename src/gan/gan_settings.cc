@@ -1,142 +1,122 @@
 #include "gan/gan_settings.h"
 
-#include <cerrno>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "io/atomic_output.h"
+#include "io/common_options.h"
 #include "util/error.h"
+#include "util/options.h"
 #include "util/strings.h"
 
 namespace tsrir {
 namespace {
-constexpr const char* kFormatTag = "tsrir-ts-rirgan-settings-v1";
 
-// Seeds are unsigned 64-bit (any --seed the command line accepts must read back).
-uint64_t parse_seed(const std::string& text, const std::string& context) {
-  if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos) {
-    throw Error(context + ": expected an unsigned integer, got '" + text + "'");
-  }
-  errno = 0;
-  const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
-  if (errno == ERANGE) throw Error(context + ": seed out of range: '" + text + "'");
-  return uint64_t(v);
+// The file's keys in the order files have always had them (format first): the bytes of a model
+// written before the file followed the options stay the bytes written now.
+const std::vector<std::string> kFileOrder = {
+    "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
+    "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
+    "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "generator_activation",
+    "generator_update", "disc_augment", "precision", "warmup_steps", "real_list", "synthetic_list"};
+
+SettingsStyle file_style() {
+  SettingsStyle style;
+  style.sorted = false;
+  style.underscores = true;  // "learning_rate" for --learning-rate
+  style.double_digits = 17;  // exact: a resumed run compares the values
+  style.require_all = false;  // a key added later keeps the paper's value (the member initialiser)
+  return style;
 }
+
+// A settings file bound to `settings`' fields.
+SettingsFile bound_file(GanSettings* settings) {
+  SettingsFile file("tsrir-ts-rirgan-settings-v1", "a TS-RIRGAN settings file", file_style());
+  settings->RegisterStored(&file);
+  file.Order(kFileOrder);
+  return file;
+}
+
+// What the networks are built for (gan_networks.h): a file that says otherwise is not a model here.
+void check_supported(const GanSettings& s, const std::string& where) {
+  if (!(s.correction_max_hz >= 0 && s.correction_max_hz < 8000)) {
+    throw Error(where + ": correction_max_hz must be in [0, 8000)");
+  }
+  if (s.warmup_steps < 0) throw Error(where + ": warmup_steps must be >= 0");
+  if (s.width < 1 || s.kernel_length < 1 || s.slice_length != 16384 || s.sample_rate_hz != 16000.0) {
+    throw Error(where + ": unsupported model settings (width " + std::to_string(s.width) + ", slice " +
+                std::to_string(s.slice_length) + ")");
+  }
+}
+
 }  // namespace
 
-void throw_bad_choice_name(const std::string& context, const std::string& text, const std::string& listed) {
-  throw Error(context + ": expected one of " + listed + ", got '" + text + "'");
+void GanSettings::Register(OptionsItf* opts) {
+  opts->Register("width", &width, "Model width (64 = the paper's model; 4-16 for CPU experiments)");
+  opts->RegisterEnum("decoder", &decoder, kGanDecoderNames,
+                  "Generator up path: original (16w,8w,4w channels: the original's code) or light "
+                  "(4w,2w,w: its code comments; 41.4 M instead of 66.6 M parameters at width 64, 1/3 of the FLOPs)");
+  opts->Register("batch-size", &batch_size, "RIRs per batch (the paper's is 64)");
+  CommonOptions(opts).seed(&seed, "the initialisation and batch order");
+  opts->Register("learning-rate", &learning_rate, "Generators' RMSProp learning rate (the paper's: 3e-5)");
+  opts->Register("disc-learning-rate", &disc_learning_rate,
+                 "Discriminators' RMSProp learning rate (0 = --learning-rate, the paper)");
+  opts->Register("disc-updates", &disc_updates, "Discriminator updates per generator update (the paper: 2)");
+  opts->RegisterEnum("init", &init, kGanInitNames, "Kernel init of a new model (the paper: glorot)");
+  opts->Register("rmsprop-initial-ms", &rmsprop_initial_ms,
+                 "RMSProp's initial mean square of a new model: 0 or 1 (TF1, the paper)");
+  opts->Register("cycle-weight", &cycle_weight, "Generator loss weight per cycle L1 term (the paper: 250)");
+  opts->Register("identity-weight", &identity_weight, "Generator loss weight of the identity L1 term (the paper: 175; at 0 the identity passes are "
+                 "skipped, a third fewer generator passes per joint step, and the log's identity columns read nan)");
+  opts->Register("gain-weight", &gain_weight,
+                 "Band-gain generators: weight of the L2 penalty on their log gains (nepers^2) in the generators' loss "
+                 "(the paper has no such term)");
+  opts->Register("warmup-steps", &warmup_steps, "Ramp the learning rates linearly over the first N steps (0 = none, the paper)");
+  opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
+                  "Training arithmetic: bfloat16 = CPU autocast, bfloat16 convolutions with float32 weights, "
+                  "gradients and losses; faster only on CPUs with AVX512-BF16/AMX (bench/RESULTS.md)");
+  opts->RegisterEnum("generator", &generator, kGanGeneratorNames,
+                  "original (the paper: tanh output rebuilt through the bottleneck), residual (output = "
+                  "input + a learned correction, zero before the input's direct sound) or band-gain (the residual's "
+                  "correction + a smooth gain per band and time after the direct sound on the input's own band "
+                  "signals: the whole band's levels can change)");
+  opts->Register("correction-max-hz", &correction_max_hz,
+                 "Residual and band-gain generators: the waveform correction is low-passed, nothing left from this frequency up "
+                 "(Hz; 0 = full band; the paper has no such limit)");
+  opts->RegisterEnum("generator-activation", &generator_activation, kGanActivationNames,
+                  "Generator hidden activation (the paper: relu; leaky_relu has slope 0.2)");
+  opts->RegisterEnum("disc-augment", &disc_augment, kGanDiscAugmentNames,
+                  "Discriminator input augmentation (the paper: none; DiffAugment-style random delay, gain, polarity)");
+  opts->RegisterEnum("generator-update", &generator_update, kGanGeneratorUpdateNames,
+                  "sequential (the paper: G_SR then G_RS, each on fresh batches) or joint (CycleGAN's "
+                  "reference: both generators from one forward, one summed loss)");
 }
 
-std::string gan_settings_text(const GanSettings& s) {
-  std::ostringstream os;
-  os << "format " << kFormatTag << "\n"
-     << "width " << s.width << "\n"
-     << "kernel_length " << s.kernel_length << "\n"
-     << "slice_length " << s.slice_length << "\n"
-     << "sample_rate_hz " << format_double(s.sample_rate_hz, 17) << "\n"
-     << "batch_size " << s.batch_size << "\n"
-     << "seed " << s.seed << "\n"
-     << "learning_rate " << format_double(s.learning_rate, 17) << "\n"
-     << "disc_learning_rate " << format_double(s.disc_learning_rate, 17) << "\n"
-     << "disc_updates " << s.disc_updates << "\n"
-     << "init " << choice_name(kGanInitNames, s.init) << "\n"
-     << "cycle_weight " << format_double(s.cycle_weight, 17) << "\n"
-     << "identity_weight " << format_double(s.identity_weight, 17) << "\n"
-     << "gain_weight " << format_double(s.gain_weight, 17) << "\n"
-     << "rmsprop_initial_ms " << format_double(s.rmsprop_initial_ms, 17) << "\n"
-     << "decoder " << choice_name(kGanDecoderNames, s.decoder) << "\n"
-     << "generator " << choice_name(kGanGeneratorNames, s.generator) << "\n"
-     << "correction_max_hz " << format_double(s.correction_max_hz, 17) << "\n"
-     << "generator_activation " << choice_name(kGanActivationNames, s.generator_activation) << "\n"
-     << "generator_update " << choice_name(kGanGeneratorUpdateNames, s.generator_update) << "\n"
-     << "disc_augment " << choice_name(kGanDiscAugmentNames, s.disc_augment) << "\n"
-     << "precision " << choice_name(kGanPrecisionNames, s.precision) << "\n"
-     << "warmup_steps " << s.warmup_steps << "\n"
-     << "real_list " << s.real_list << "\n"
-     << "synthetic_list " << s.synthetic_list << "\n";
-  return os.str();
+// The file holds what Register declares and the fixed shape and the lists, which are not options.
+void GanSettings::RegisterStored(OptionsItf* opts) {
+  Register(opts);
+  opts->Register("kernel-length", &kernel_length, "Convolution kernel length (fixed: 25)");
+  opts->Register("slice-length", &slice_length, "RIR length in samples (fixed: 16384)");
+  opts->Register("sample-rate-hz", &sample_rate_hz, "Sample rate (fixed: 16000)");
+  opts->Register("real-list", &real_list, "The real RIRs the model was trained on");
+  opts->Register("synthetic-list", &synthetic_list, "The synthetic RIRs the model was trained on");
+}
+
+SettingsValues gan_settings_values(const GanSettings& settings) {
+  GanSettings copy = settings;
+  return bound_file(&copy).values();
+}
+
+std::string gan_settings_text(const GanSettings& settings) {
+  GanSettings copy = settings;
+  return bound_file(&copy).text();
 }
 
 GanSettings parse_gan_settings(const std::string& text, const std::string& where) {
   GanSettings s;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  bool have_format = false;
-  while (std::getline(in, line)) {
-    ++line_no;
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    const size_t space = t.find_first_of(" \t");
-    const std::string key = t.substr(0, space);
-    const std::string value = space == std::string::npos ? "" : trim(t.substr(space));
-    const std::string ctx = located(where, line_no, key);
-    if (key == "format") {
-      if (value != kFormatTag) throw Error(located(where, line_no, "unknown settings format '" + value + "'"));
-      have_format = true;
-    } else if (key == "width") {
-      s.width = int(parse_int(value, ctx));
-    } else if (key == "kernel_length") {
-      s.kernel_length = int(parse_int(value, ctx));
-    } else if (key == "slice_length") {
-      s.slice_length = parse_int(value, ctx);
-    } else if (key == "sample_rate_hz") {
-      s.sample_rate_hz = parse_double(value, ctx);
-    } else if (key == "batch_size") {
-      s.batch_size = int(parse_int(value, ctx));
-    } else if (key == "seed") {
-      s.seed = parse_seed(value, ctx);
-    } else if (key == "learning_rate") {
-      s.learning_rate = parse_double(value, ctx);
-    } else if (key == "disc_learning_rate") {
-      s.disc_learning_rate = parse_double(value, ctx);
-    } else if (key == "disc_updates") {
-      s.disc_updates = int(parse_int(value, ctx));
-    } else if (key == "init") {
-      s.init = parse_choice(kGanInitNames, value, ctx);
-    } else if (key == "cycle_weight") {
-      s.cycle_weight = parse_double(value, ctx);
-    } else if (key == "identity_weight") {
-      s.identity_weight = parse_double(value, ctx);
-    } else if (key == "gain_weight") {
-      s.gain_weight = parse_double(value, ctx);
-    } else if (key == "rmsprop_initial_ms") {
-      s.rmsprop_initial_ms = parse_double(value, ctx);
-    } else if (key == "decoder") {
-      s.decoder = parse_choice(kGanDecoderNames, value, ctx);
-    } else if (key == "generator") {
-      s.generator = parse_choice(kGanGeneratorNames, value, ctx);
-    } else if (key == "correction_max_hz") {
-      s.correction_max_hz = parse_double(value, ctx);
-      if (!(s.correction_max_hz >= 0 && s.correction_max_hz < 8000)) {
-        throw Error(ctx + ": correction_max_hz must be in [0, 8000)");
-      }
-    } else if (key == "generator_activation") {
-      s.generator_activation = parse_choice(kGanActivationNames, value, ctx);
-    } else if (key == "disc_augment") {
-      s.disc_augment = parse_choice(kGanDiscAugmentNames, value, ctx);
-    } else if (key == "generator_update") {
-      s.generator_update = parse_choice(kGanGeneratorUpdateNames, value, ctx);
-    } else if (key == "warmup_steps") {
-      s.warmup_steps = parse_int(value, ctx);
-      if (s.warmup_steps < 0) throw Error(ctx + ": warmup_steps must be >= 0");
-    } else if (key == "precision") {
-      s.precision = parse_choice(kGanPrecisionNames, value, ctx);
-    } else if (key == "real_list") {
-      s.real_list = value;
-    } else if (key == "synthetic_list") {
-      s.synthetic_list = value;
-    } else {
-      throw Error(located(where, line_no, "unknown setting '" + key + "'"));
-    }
-  }
-  if (!have_format) throw Error(located(where, 0, "not a TS-RIRGAN settings file (no 'format' line)"));
-  if (s.width < 1 || s.kernel_length < 1 || s.slice_length != 16384 || s.sample_rate_hz != 16000.0) {
-    throw Error(located(where, 0, "unsupported model settings (width " + std::to_string(s.width) +
-                                      ", slice " + std::to_string(s.slice_length) + ")"));
-  }
+  bound_file(&s).parse(text, where);
+  check_supported(s, where);
   return s;
 }
 

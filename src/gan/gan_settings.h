@@ -2,18 +2,17 @@
 // what a resumed run must agree with. The same text is stored inside each checkpoint.
 #pragma once
 #include <cstdint>
-#include <initializer_list>
 #include <string>
-#include <utility>
+
+#include "util/options.h"
+#include "util/settings_file.h"
 
 namespace tsrir {
 
-class OptionsItf;
-
 // The settings' typed choices. Each enum's names (the command line's and the settings file's, one
-// table) are listed once, in the k...Names lists below: GanSettings::Register hands them to
-// RegisterEnum, and the settings file writes and reads the same names, so a value is validated
-// in one place.
+// table) are listed once, in the k...Names tables below: GanSettings::Register hands them to
+// RegisterEnum, and the settings file is written and read through those same Register calls
+// (util/settings_file.h), so a value is validated in one place.
 enum class GanInit { kGlorot, kHe };
 enum class GanDecoder { kOriginal, kLight };
 enum class GanGenerator { kOriginal, kResidual, kBandGain };
@@ -22,44 +21,18 @@ enum class GanGeneratorUpdate { kSequential, kJoint };
 enum class GanDiscAugment { kNone, kShiftGainPolarity };
 enum class GanPrecision { kFloat32, kBfloat16 };
 
-template <typename E>
-using ChoiceNames = std::initializer_list<std::pair<const char*, E>>;
-// Namespace-scope initializer lists: their arrays live as long as the program.
-inline const ChoiceNames<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
-inline const ChoiceNames<GanDecoder> kGanDecoderNames = {{"light", GanDecoder::kLight},
-                                                         {"original", GanDecoder::kOriginal}};
-inline const ChoiceNames<GanGenerator> kGanGeneratorNames = {
+inline const Choices<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
+inline const Choices<GanDecoder> kGanDecoderNames = {{"light", GanDecoder::kLight}, {"original", GanDecoder::kOriginal}};
+inline const Choices<GanGenerator> kGanGeneratorNames = {
     {"band-gain", GanGenerator::kBandGain}, {"residual", GanGenerator::kResidual}, {"original", GanGenerator::kOriginal}};
-inline const ChoiceNames<GanActivation> kGanActivationNames = {{"relu", GanActivation::kRelu},
-                                                               {"leaky_relu", GanActivation::kLeakyRelu}};
-inline const ChoiceNames<GanGeneratorUpdate> kGanGeneratorUpdateNames = {
+inline const Choices<GanActivation> kGanActivationNames = {{"relu", GanActivation::kRelu},
+                                                           {"leaky_relu", GanActivation::kLeakyRelu}};
+inline const Choices<GanGeneratorUpdate> kGanGeneratorUpdateNames = {
     {"joint", GanGeneratorUpdate::kJoint}, {"sequential", GanGeneratorUpdate::kSequential}};
-inline const ChoiceNames<GanDiscAugment> kGanDiscAugmentNames = {
+inline const Choices<GanDiscAugment> kGanDiscAugmentNames = {
     {"none", GanDiscAugment::kNone}, {"shift-gain-polarity", GanDiscAugment::kShiftGainPolarity}};
-inline const ChoiceNames<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
-                                                             {"bfloat16", GanPrecision::kBfloat16}};
-
-// The name of `value` in `names` ("?" if it has none: an enum value outside its table).
-template <typename E>
-const char* choice_name(ChoiceNames<E> names, E value) {
-  for (const auto& c : names) {
-    if (c.second == value) return c.first;
-  }
-  return "?";
-}
-
-[[noreturn]] void throw_bad_choice_name(const std::string& context, const std::string& text, const std::string& listed);
-
-// The value named `text` in `names` (Error naming `context` and the choices otherwise).
-template <typename E>
-E parse_choice(ChoiceNames<E> names, const std::string& text, const std::string& context) {
-  std::string listed;
-  for (const auto& c : names) {
-    if (text == c.first) return c.second;
-    listed += std::string(listed.empty() ? "" : " | ") + c.first;
-  }
-  throw_bad_choice_name(context, text, listed);
-}
+inline const Choices<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
+                                                         {"bfloat16", GanPrecision::kBfloat16}};
 
 struct GanSettings {
   int width = 64;
@@ -126,9 +99,11 @@ struct GanSettings {
   std::string real_list;
   std::string synthetic_list;
 
-  // The model's and training's options (gan_options.cc): everything above but the fixed shape
+  // The model's and training's options (gan_settings.cc): everything above but the fixed shape
   // (kernel, slice, rate) and the lists, which ts-rirgan-train takes as --real/--synthetic.
   void Register(OptionsItf* opts);
+  // The settings file's entries (gan_settings.cc): Register's, then the fixed shape and the lists.
+  void RegisterStored(OptionsItf* opts);
 };
 
 // The toolkit's training defaults (gan_options.cc), which depart from the paper's where the
@@ -139,6 +114,9 @@ GanSettings default_training_settings();
 // Width multipliers of the generator's first three transposed convs for `decoder`.
 void decoder_multipliers(GanDecoder decoder, int multipliers[3]);
 
+// The settings file: one "key value" line per entry of RegisterStored, in the order files have
+// always had (files written before a key existed still read: the key keeps the paper's value).
+SettingsValues gan_settings_values(const GanSettings& settings);
 std::string gan_settings_text(const GanSettings& settings);
 // `where` names the file for errors (unknown key, bad value, wrong format version).
 GanSettings parse_gan_settings(const std::string& text, const std::string& where);

@@ -497,16 +497,9 @@ void validate(const GanTrainOptions& o) {
 // compared on the settings text, so that a new setting is compared too.
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
   check_same_architecture(saved, asked, where + " (give the --width, --decoder and --generator it was trained with)");
-  auto lines = [](const GanSettings& s) {
-    std::map<std::string, std::string> kv;
-    std::istringstream in(gan_settings_text(s));
-    std::string key, value;
-    while (in >> key && std::getline(in, value)) kv[key] = value.empty() ? value : value.substr(1);
-    return kv;
-  };
   const std::set<std::string> may_change = {"learning_rate", "disc_learning_rate", "real_list", "synthetic_list",
                                             "init", "rmsprop_initial_ms"};
-  const auto was = lines(saved), now = lines(asked);
+  const SettingsValues was = gan_settings_values(saved), now = gan_settings_values(asked);
   std::string diff;
   for (const auto& [key, value] : was) {
     if (may_change.count(key) || (now.count(key) && now.at(key) == value)) continue;

@@ -15,8 +15,8 @@ class OptionsItf;
 
 // Which generator translates: G_SR (the paper's use) or G_RS.
 enum class GanDirection { kSyntheticToReal, kRealToSynthetic };
-inline const ChoiceNames<GanDirection> kGanDirectionNames = {{"synthetic-to-real", GanDirection::kSyntheticToReal},
-                                                             {"real-to-synthetic", GanDirection::kRealToSynthetic}};
+inline const Choices<GanDirection> kGanDirectionNames = {{"synthetic-to-real", GanDirection::kSyntheticToReal},
+                                                         {"real-to-synthetic", GanDirection::kRealToSynthetic}};
 
 struct GanTrainOptions {
   std::string real_list;        // rir scp / rir_list / audio file: the "real" domain
