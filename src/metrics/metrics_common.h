@@ -29,7 +29,8 @@ double energy_sum(const std::vector<float>& h, size_t begin, size_t end);
 struct MetricsWorkspace {
   std::vector<std::vector<double>> bands;  // band outputs, squared in place
   std::vector<double> energy;              // broadband squared samples from the onset
-  std::vector<double> tail;                // backward sums of the current energy
+  std::vector<double> tail;                // backward sums of the broadband energy
+  std::vector<std::vector<double>> band_tails;  // backward sums of each band's energy
   std::vector<double> db;                  // EDC in dB over the fit ranges
 };
 MetricsWorkspace& metrics_workspace();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "dsp/bands.h"
 #include "metrics/decay_fit.h"
@@ -27,13 +28,53 @@ struct IsoDecay {
   bool truncated = false;
 };
 
-void iso_decay(const double* energy, size_t n, double fs, double center_hz, bool use_lundeby, const std::string& label,
-               std::vector<std::string>* warnings, std::vector<double>* tail_buffer, IsoDecay* d) {
-  std::vector<double>& tail = *tail_buffer;
-  tail.resize(n + 1);
-  tail[n] = 0.0;
-  for (size_t i = n; i-- > 0;) tail[i] = tail[i + 1] + energy[i];
-  d->lundeby = lundeby_intersection_from_tail(tail.data(), n, fs, center_hz);
+// The backward sums tail[i] = sum_{k>=i} energy[k] for i in [0, n] (tail[n] = 0), added from the
+// end: the sum from any start s is the same numbers added in the same order, so one curve over
+// the whole RIR serves every start.
+void backward_sums(const double* energy, size_t n, std::vector<double>* tail) {
+  tail->resize(n + 1);
+  double* t = tail->data();
+  t[n] = 0.0;
+  for (size_t i = n; i-- > 0;) t[i] = t[i + 1] + energy[i];
+}
+
+// The same for several curves of one length at once: each sum is a chain of dependent additions
+// (their latency, not the adds, bounds one curve); interleaved, the chains overlap. Each curve's
+// additions and their order are those of backward_sums, so the values are the same to the bit.
+void backward_sums_interleaved(const std::vector<std::vector<double>>& energies, size_t n,
+                               std::vector<std::vector<double>>* tails) {
+  const size_t count = energies.size();
+  tails->resize(count);
+  std::vector<const double*> e(count);
+  std::vector<double*> t(count);
+  for (size_t b = 0; b < count; ++b) {
+    (*tails)[b].resize(n + 1);
+    e[b] = energies[b].data();
+    t[b] = (*tails)[b].data();
+    t[b][n] = 0.0;
+  }
+  for (size_t i = n; i-- > 0;) {
+    for (size_t b = 0; b < count; ++b) t[b][i] = t[b][i + 1] + e[b][i];
+  }
+}
+
+// The first k in [0, end) with edc[k] <= 0 (or NaN), else `end`: blocks of 8 compared without an
+// early exit (which vectorises), the block holding the first such value scanned one by one.
+size_t first_not_positive(const double* edc, size_t end) {
+  size_t k = 0;
+  for (; k + 8 <= end; k += 8) {
+    int bad = 0;
+    for (size_t j = 0; j < 8; ++j) bad |= !(edc[k + j] > 0);
+    if (bad) break;
+  }
+  while (k < end && edc[k] > 0) ++k;
+  return k;
+}
+
+// `tail` = backward_sums of the n energies the decay starts with (tail[n] = 0).
+void iso_decay(const double* tail, size_t n, double fs, double center_hz, bool use_lundeby, const std::string& label,
+               std::vector<std::string>* warnings, IsoDecay* d) {
+  d->lundeby = lundeby_intersection_from_tail(tail, n, fs, center_hz);
   d->tail_energy = 0;
   d->truncated = false;
   size_t end = n;
@@ -49,20 +90,46 @@ void iso_decay(const double* energy, size_t n, double fs, double center_hz, bool
   }
   d->model_start = end;
   d->edc.resize(end);
+  double* edc = d->edc.data();
   if (d->truncated) {
     // Chu: the noise is also present before the intersection; subtracting its power keeps it
     // from flattening the end of the evaluation range (T30 at 47 dB peak-to-noise: +2.9 % with
     // truncation and compensation alone, +1 % with the subtraction too).
-    const double noise = d->lundeby.noise_power, cut = tail[end];
-    for (size_t k = 0; k < end; ++k) d->edc[k] = (tail[k] - cut) - noise * (double)(end - k) + d->tail_energy;
+    const double noise = d->lundeby.noise_power, cut = tail[end], tail_energy = d->tail_energy;
+    if (end <= size_t(INT32_MAX)) {
+      // The same values through 32-bit counts, whose conversion to double vectorises (SSE2).
+      const int32_t end32 = int32_t(end);
+      for (int32_t k = 0; k < end32; ++k) edc[k] = (tail[k] - cut) - noise * (double)(end32 - k) + tail_energy;
+    } else {
+      for (size_t k = 0; k < end; ++k) edc[k] = (tail[k] - cut) - noise * (double)(end - k) + tail_energy;
+    }
     // Noise fluctuations can drive the last values to zero or below: those are not measured.
-    size_t k = 0;
-    while (k < end && d->edc[k] > 0) ++k;
-    end = k;
+    end = first_not_positive(edc, end);
   } else {
-    for (size_t k = 0; k < end; ++k) d->edc[k] = tail[k];
+    std::copy(tail, tail + end, edc);
   }
   d->usable_end = end;
+}
+
+// Each band's samples squared in place, with its energy (summed from the first sample on) and
+// peak; the bands interleaved, as in backward_sums_interleaved, each sum in its own order.
+void square_bands(std::vector<std::vector<double>>* bands, size_t n, std::vector<double>* total,
+                  std::vector<double>* peak) {
+  const size_t count = bands->size();
+  total->assign(count, 0.0);
+  peak->assign(count, 0.0);
+  std::vector<double*> y(count);
+  for (size_t b = 0; b < count; ++b) y[b] = (*bands)[b].data();
+  double* sum = total->data();
+  double* top = peak->data();
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t b = 0; b < count; ++b) {
+      const double v = y[b][i] * y[b][i];
+      y[b][i] = v;
+      sum[b] += v;
+      top[b] = std::max(top[b], v);
+    }
+  }
 }
 
 // Energy from sample `k` (relative to the onset) to the end, noise-compensated: inside the
@@ -165,7 +232,8 @@ RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
   w.energy.resize(rem);
   for (size_t i = 0; i < rem; ++i) w.energy[i] = (double)h[onset + i] * h[onset + i];
   thread_local IsoDecay bb;
-  iso_decay(w.energy.data(), rem, fs, 0.0, o.lundeby, "broadband", &m.warnings, &w.tail, &bb);
+  backward_sums(w.energy.data(), rem, &w.tail);
+  iso_decay(w.tail.data(), rem, fs, 0.0, o.lundeby, "broadband", &m.warnings, &bb);
   m.broadband = iso_band_metrics(bb, 0.0, fs, o.lundeby, "broadband", &m.warnings, &w.db);
   m.broadband.level_db = 0.0;
 
@@ -190,25 +258,21 @@ RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
   sos_filter_bank(band_filters(fs, centers), h.data(), n, /*time_reversed=*/true, &y);
   IsoDecay& d = bb;  // the broadband curve is no longer needed
   const double total = energy_sum(h, 0, n);
+  std::vector<double> band_total, band_peak;
+  square_bands(&y, n, &band_total, &band_peak);
+  backward_sums_interleaved(y, n, &w.band_tails);
   for (size_t b = 0; b < centers.size(); ++b) {
     const std::string label = band_name(centers[b]);
-    double band_total = 0, band_peak = 0;
-    for (size_t i = 0; i < n; ++i) {
-      const double v = y[b][i] * y[b][i];
-      y[b][i] = v;
-      band_total += v;
-      band_peak = std::max(band_peak, v);
-    }
     // Time-reversed filtering moves part of the band's direct sound ahead of the broadband onset;
     // the band EDC starts at the band's own onset when that is earlier, so all of it is counted
     // (otherwise E(0) is too small, the -5 dB point moves into the later, often slower decay and
     // T30 comes out long: +2 % on average over the R3VIVAL set, up to +5.5 %).
-    const double band_onset_level = band_peak * std::pow(10.0, -o.onset_threshold_db / 10.0);
+    const double band_onset_level = band_peak[b] * std::pow(10.0, -o.onset_threshold_db / 10.0);
     size_t start = 0;
     while (start < onset && y[b][start] < band_onset_level) ++start;
-    iso_decay(y[b].data() + start, n - start, fs, centers[b], o.lundeby, label, &m.warnings, &w.tail, &d);
+    iso_decay(w.band_tails[b].data() + start, n - start, fs, centers[b], o.lundeby, label, &m.warnings, &d);
     BandMetrics bm = iso_band_metrics(d, centers[b], fs, o.lundeby, label, &m.warnings, &w.db);
-    bm.level_db = band_total > 0 ? 10.0 * std::log10(band_total / total) : -INFINITY;
+    bm.level_db = band_total[b] > 0 ? 10.0 * std::log10(band_total[b] / total) : -INFINITY;
     // ISO 3382-1: time-reversed filtering stays unbiased for bandwidth * T > 4.
     const BandEdgesHz edges = ansi_octave_edges_hz(centers[b], kOctaveOrder);
     if (std::isfinite(bm.rt_s) && (edges.high_hz - edges.low_hz) * bm.rt_s < 4.0) {
