@@ -43,6 +43,9 @@ class RirSetWriter {
   RirSetWriter(const std::string& out_dir, SampleFormat format);
   // Thread-safe. Ids must be unique and usable as file names (else Error).
   void add(const Signal& rir, const std::string& room_id = "");
+  // One multichannel RIR (a microphone array's): channels[c] is channel c, all with the same id,
+  // rate and length.
+  void add_channels(const std::vector<Signal>& channels, const std::string& room_id = "");
   void commit();   // writes rir.scp and rir_list (sorted by id) and renames the directory
   const std::string& temp_dir() const { return dir_.path(); }
 
