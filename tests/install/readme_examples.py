@@ -47,10 +47,12 @@ PRODUCES = {
     "rir-room-list": ["rooms.txt"],
     "rir-simulate --sample-rate=16000 --length=auto one_room.txt": ["sim_one/r1.wav", "sim_one/rir_list"],
     "rir-simulate --sample-rate=16000 --length=1.0": ["gas/rir.scp", "gas/rir_list"],
+    "rir-simulate --format=float --length=0.5 array_room.txt": ["sim_array/a1.wav", "sim_array/rir_list"],
+    "wav-reverberate --multi-channel-output=true": ["far8.wav"],
     "rir-eq --real=real.scp": ["gas_eq/rir_list"],
     "reverberate-data --rir-set-parameters '0.5, real/rir_list'": ["data/rvb/wav.scp"],
     "reverberate-data --rir-set-parameters gas_eq/rir_list": ["data/rvb_wavs/wav.scp"],
-    "wav-reverberate": ["far.wav"],
+    "wav-reverberate --impulse-response=sim_one/r1.wav": ["far.wav"],
     "rir-diagnose": ["diag/findings.json", "diag/report.html"],
     "python3 example.py": ["far.wav", "lhotse_rirs/cuts.jsonl", "rir_list_from_lhotse"],
 }

@@ -51,6 +51,7 @@ class TypedErrors(unittest.TestCase):
             (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=(2, 2, 1), fs=-16000), "fs"),
             (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=(2, 2, 1), t60=[0.5, 0.4]), "t60"),
             (lambda: tsrir.reverberate(np.ones((2, 2, 2)), h, FS), "speech"),
+            (lambda: tsrir.reverberate(np.ones((4, 200)), h, FS, multi_channel_output=True), "multi_channel_output"),
             (lambda: tsrir.reverberate(x, h, FS, shift="onset"), "shift"),
             (lambda: tsrir.reverberate(x, h, FS, noise=[x, x], snr_db=[1, 2, 3]), "snr_db"),
             (lambda: tsrir.encode_wav(x, FS, format="mp3"), "format"),

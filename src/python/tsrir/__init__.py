@@ -265,6 +265,12 @@ def reverberate(speech, rir, fs, noise=None, snr_db=None, shift="peak", normaliz
     starts = _per_noise(start_time_s, "start_time_s", "s", max(count, 1))
     offsets = _per_noise(offset_s, "offset_s", "s", max(count, 1))
     multi = _c.flag(multi_channel_output, "multi_channel_output")
+    if multi and x.ndim == 2 and x.shape[0] > 1 and (h is None or h.ndim == 1 or h.shape[0] == 1):
+        # wav-reverberate's rule: one output channel per RIR channel, from one speech channel. A
+        # (1, n) result for multichannel speech would look like a lost array.
+        raise ValueError("multi_channel_output: gives one output channel per RIR channel, but the RIR has one "
+                         "channel and speech has %d; reverberate each speech channel (speech[c]) or give a "
+                         "multichannel RIR (e.g. rir-simulate with mic=x,y,z;x,y,z;...)" % x.shape[0])
     input_channel = _channel_choice(input_channel, x, "input_channel", "speech")
     rir_channel = _channel_choice(rir_channel, h, "rir_channel", "rir", used_by_all=multi)
     first_noise = noises[0] if isinstance(noises, list) and noises else noises
