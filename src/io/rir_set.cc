@@ -95,6 +95,19 @@ Signal load_rir(const RirRef& ref, const AudioReadOptions& options) {
   return s;
 }
 
+std::vector<Signal> load_rir_channels(const RirRef& ref, const AudioReadOptions& options) {
+  AudioInfo info;
+  std::vector<std::vector<float>> channels =
+      read_audio_channels(ref.rxfilename, &info, ref.where + " (RIR '" + ref.id + "')");
+  std::vector<Signal> out;
+  for (std::vector<float>& c : channels) {
+    Signal s{ref.id, info.sample_rate_hz, std::move(c)};
+    if (options.target_rate_hz > 0 && s.sample_rate_hz != options.target_rate_hz) s = resample(s, options.target_rate_hz);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 RirSetWriter::RirSetWriter(const std::string& out_dir, SampleFormat format)
     : dir_(out_dir), format_(format) {}
 
