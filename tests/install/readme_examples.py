@@ -49,6 +49,7 @@ PRODUCES = {
     "rir-simulate --sample-rate=16000 --length=1.0": ["gas/rir.scp", "gas/rir_list"],
     "rir-simulate --format=float --length=0.5 array_room.txt": ["sim_array/a1.wav", "sim_array/rir_list"],
     "wav-reverberate --multi-channel-output=true": ["far8.wav"],
+    "reverberate-data --multi-channel-output=true": ["data/rvb8/wav.scp"],
     "rir-eq --real=real.scp": ["gas_eq/rir_list"],
     "reverberate-data --rir-set-parameters '0.5, real/rir_list'": ["data/rvb/wav.scp"],
     "reverberate-data --rir-set-parameters gas_eq/rir_list": ["data/rvb_wavs/wav.scp"],
