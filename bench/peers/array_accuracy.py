@@ -28,6 +28,9 @@ import numpy as np
 
 import tsrir
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rooms import fmt, peak  # noqa: E402
+
 FS = 16000
 C = 343.0
 ROOM = (6.0, 4.5, 3.0)
@@ -41,19 +44,6 @@ PATTERNS = [("omni", "o", 0.0), ("subcardioid", "s", 210.0), ("cardioid", "c", 2
 def mics():
     return [(CENTRE[0] + 0.05 * math.cos(2 * math.pi * k / 8), CENTRE[1] + 0.05 * math.sin(2 * math.pi * k / 8),
              CENTRE[2]) for k in range(8)]
-
-
-def fmt(v):
-    return ",".join("%.9g" % x for x in v)
-
-
-def peak(h, pos):
-    i0 = int(round(pos))
-    i = max(range(i0 - 2, i0 + 3), key=lambda k: abs(h[k]))
-    a, b, c = abs(h[i - 1]), abs(h[i]), abs(h[i + 1])
-    den = a - 2 * b + c
-    off = 0.5 * (a - c) / den if den != 0 else 0.0
-    return i + off, h[i] - 0.25 * (h[i - 1] - h[i + 1]) * off
 
 
 def main():
