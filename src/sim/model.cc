@@ -284,7 +284,7 @@ std::vector<Signal> Model::render_array(const RoomSpec& room, double sample_rate
 Signal Model::render(const RoomSpec& room, double sample_rate_hz, size_t num_samples, uint64_t seed) const {
   if (room.num_mics() != 1) {
     throw Error(room.where + ": " + std::to_string(room.num_mics()) +
-                " microphones: render the array with render_array()");
+                " microphones (an array): this takes one microphone per room-list line (rir-simulate takes arrays)");
   }
   return std::move(render_array(room, sample_rate_hz, num_samples, seed).front());
 }
