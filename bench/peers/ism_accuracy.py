@@ -57,14 +57,7 @@ def arrivals(r, max_s):
     return sorted(out.items())
 
 
-def peak(h, pos):
-    i0 = int(round(pos))
-    seg = range(max(1, i0 - 2), min(len(h) - 1, i0 + 3))
-    i = max(seg, key=lambda k: abs(h[k]))
-    a, b, c = abs(h[i - 1]), abs(h[i]), abs(h[i + 1])
-    den = a - 2 * b + c
-    off = 0.5 * (a - c) / den if den != 0 else 0.0
-    return i + off, h[i] - 0.25 * (h[i - 1] - h[i + 1]) * off
+peak = rooms.peak
 
 
 def main():

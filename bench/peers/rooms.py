@@ -56,6 +56,18 @@ def eyring_t60(r, alpha=None):
     return 24 * math.log(10) * r["V"] / (C * r["S"] * -math.log(1 - a))
 
 
+def peak(h, pos):
+    """(time in samples, amplitude) of the arrival near `pos`: the largest |h| within +-2 samples,
+    refined by a parabola through |h| (shared by ism_accuracy.py and array_accuracy.py)."""
+    i0 = int(round(pos))
+    seg = range(max(1, i0 - 2), min(len(h) - 1, i0 + 3))
+    i = max(seg, key=lambda k: abs(h[k]))
+    a, b, c = abs(h[i - 1]), abs(h[i]), abs(h[i + 1])
+    den = a - 2 * b + c
+    off = 0.5 * (a - c) / den if den != 0 else 0.0
+    return i + off, h[i] - 0.25 * (h[i - 1] - h[i + 1]) * off
+
+
 def fmt(v):
     return ",".join("%g" % x for x in v)
 

@@ -122,6 +122,7 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   out += shell_quote(options.program);
   out += " " + std::string(options.reverb.shift_output ? "--shift-output=true" : "--shift-output=false");
   if (!options.reverb.normalize_output) out += " --normalize-output=false";
+  if (options.multi_channel_output) out += " --multi-channel-output=true";
   if (options.sample_rate_hz > 0) out += " --sample-rate=" + format_double(options.sample_rate_hz);
   if (plan.rir >= 0)
     out += " " + shell_quote("--impulse-response=" + sources.rirs[static_cast<size_t>(plan.rir)].rxfilename);

@@ -63,6 +63,7 @@ struct PipeOptions {
   // false: the pipe program may be Kaldi's binary, so options only tsrir's wav-reverberate has
   // (--additive-offsets, --additive-loops, --snr-reference) are refused with an error.
   bool tsrir_extensions = true;
+  bool multi_channel_output = false;  // --multi-channel-output=true (Kaldi's program has it too)
   // > 0 (tsrir's program only): --sample-rate=<Hz> in every pipe, the data dir's rate the speech is
   // resampled to (reverberate-data --sample-rate; rate_policy.h).
   double sample_rate_hz = 0;

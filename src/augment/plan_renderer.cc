@@ -3,6 +3,7 @@
 #include "augment/noise_signal.h"
 #include "augment/rate_policy.h"
 #include "augment/wav_reverberate.h"
+#include "util/error.h"
 
 namespace tsrir {
 
@@ -37,6 +38,29 @@ std::shared_ptr<const PreparedRir> PlanRenderer::rir(long index, double rate) {
     const std::string what = choice.where + " (RIR '" + choice.id + "')";
     return PreparedRir(first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what), rate);
   });
+}
+
+std::shared_ptr<const PlanRenderer::RirChannels> PlanRenderer::rir_channels(long index, double rate) {
+  if (index < 0) return nullptr;
+  const RirChoice& choice = sources_.rirs[static_cast<size_t>(index)];
+  return rir_channels_.get({index, rate}, [&] {
+    const std::string what = choice.where + " (RIR '" + choice.id + "')";
+    RirChannels channels;
+    for (std::vector<float>& c : read_channels_at_rate(choice.rxfilename, rate, what)) {
+      channels.push_back(std::make_unique<const PreparedRir>(std::move(c), rate));
+    }
+    return channels;
+  });
+}
+
+std::vector<std::vector<float>> PlanRenderer::render_channels(const std::vector<float>& speech, double rate,
+                                                              const RecordingPlan& plan) {
+  if (!plan.noises.empty()) throw Error("multichannel output adds no noises, but the plan has some");
+  const std::shared_ptr<const RirChannels> rirs = rir_channels(plan.rir, rate);
+  if (!rirs) return {reverberate_channel(speech, rate, nullptr, {}, reverb_)};
+  std::vector<std::vector<float>> out;
+  for (const auto& rir : *rirs) out.push_back(reverberate_channel(speech, rate, rir.get(), {}, reverb_));
+  return out;
 }
 
 std::vector<AdditiveSignal> PlanRenderer::additive_signals(const RecordingPlan& plan, double rate) {

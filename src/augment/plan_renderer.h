@@ -28,6 +28,13 @@ class PlanRenderer {
   std::vector<AdditiveSignal> additive_signals(const RecordingPlan& plan, double rate);
   // The far-field copy of `speech` (one channel at `rate`), before any encoding.
   std::vector<float> render(const std::vector<float>& speech, double rate, const RecordingPlan& plan);
+  // Every channel of RIR `index` (a microphone array's) at `rate` (null for -1).
+  using RirChannels = std::vector<std::unique_ptr<const PreparedRir>>;
+  std::shared_ptr<const RirChannels> rir_channels(long index, double rate);
+  // --multi-channel-output: one far-field channel per channel of the plan's RIR (one channel when
+  // there is none), as wav-reverberate --multi-channel-output=true; the plan must have no noises.
+  std::vector<std::vector<float>> render_channels(const std::vector<float>& speech, double rate,
+                                                  const RecordingPlan& plan);
   const ReverbOptions& reverb() const { return reverb_; }
 
  private:
@@ -51,6 +58,7 @@ class PlanRenderer {
   const AugmentSources& sources_;
   ReverbOptions reverb_;
   LoadOnce<PreparedRir> rirs_;
+  LoadOnce<RirChannels> rir_channels_;
   LoadOnce<std::vector<float>> noises_;
 };
 

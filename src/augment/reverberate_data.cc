@@ -170,6 +170,10 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
                      {{"auto", PipeDialect::kAuto}, {"tsrir", PipeDialect::kTsrir}, {"kaldi", PipeDialect::kKaldi}},
                      "auto (tsrir options in pipes only for our wav-reverberate), tsrir, or kaldi");
   reverb.Register(opts);
+  opts->Register("multi-channel-output", &multi_channel_output,
+                 "one output channel per channel of the recording's RIR (a microphone array's, e.g. from rir-simulate "
+                 "mic=x,y,z;x,y,z): one multichannel recording per utterance (wav-reverberate "
+                 "--multi-channel-output=true); no noises are added in this mode");
   opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
   CommonOptions(opts).seed(&random_seed, "every draw");
   opts->Register("sample-rate", &source_sampling_rate_hz,
@@ -214,6 +218,11 @@ ReverberatePlan to_plan(const ReverberateDataOptions& o, OptionSpelling spelling
   check_probability(o.pointsource_noise_addition_probability, "pointsource-noise-addition-probability", spelling);
   check_not_negative(o.max_noises_per_minute, "max-noises-per-minute", spelling);
   check_not_negative(o.max_noises_per_recording, "max-noises-per-recording", spelling);
+  if (o.multi_channel_output && !o.noise_set_parameters.empty()) {
+    throw Error(spelled("multi-channel-output", spelling) + " adds no noises (each would need as many channels as "
+                "the recording's RIR): drop " + spelled("noise-set-parameters", spelling) +
+                ", or add noise per channel afterwards");
+  }
   if (o.source_sampling_rate_hz < 0) {
     throw Error(spelled("sample-rate", spelling) + " must be > 0 Hz (or 0: the first recording's), got " +
                 format_double(o.source_sampling_rate_hz));
@@ -244,6 +253,7 @@ ReverberatePlan to_plan(const ReverberateDataOptions& o, OptionSpelling spelling
   p.noise.point_source_noise_rir = o.point_source_noise_rir == PointSourceNoiseRir::kSameRoom;
   p.random_seed = o.random_seed;
   plan.reverb = o.reverb;
+  plan.multi_channel_output = o.multi_channel_output;
   plan.sample_rate_hz = o.source_sampling_rate_hz;
   return plan;
 }
@@ -290,6 +300,7 @@ std::map<std::string, std::string> pipe_wav_scp(const std::vector<RecordingPlan>
   PipeOptions pipe;
   pipe.program = options.pipe_program.empty() ? default_pipe_program() : options.pipe_program;
   pipe.reverb = plan.reverb;
+  pipe.multi_channel_output = plan.multi_channel_output;
   pipe.tsrir_extensions = options.pipe_dialect == PipeDialect::kTsrir ||
                           (options.pipe_dialect == PipeDialect::kAuto && is_tsrir_pipe_program(pipe.program));
   if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
@@ -342,25 +353,31 @@ long long write_one_wav(const RecordingPlan& recording, const std::string& in_di
   }
   long long clipped = 0;
   if (!speech.on_disk()) {
-    Signal result;
-    result.id = recording.new_id;
-    result.sample_rate_hz = rate;
-    result.samples = renderer.render(speech.channels.at(0), rate, recording);
+    const std::vector<std::vector<float>> result =
+        options.multi_channel_output ? renderer.render_channels(speech.channels.at(0), rate, recording)
+                                     : std::vector<std::vector<float>>{renderer.render(speech.channels.at(0), rate, recording)};
     speech.channels.clear();
     AudioWriteOptions write_options;
     write_options.clipped_samples = &clipped;
-    write_wav(wav_path, result, write_options);
+    write_wav_channels(wav_path, result, rate, write_options);
     return clipped;
   }
   log_info(where + ": longer than " + format_double(options.max_in_memory_s) +
            " s: reverberated in passes over the file (memory independent of its length)");
   const std::shared_ptr<const PreparedRir> rir = renderer.rir(recording.rir, rate);
-  StreamChannel channel;
-  channel.rir = rir.get();
-  channel.additive = renderer.additive_signals(recording, rate);
+  std::vector<StreamChannel> channels(1);
+  channels[0].rir = rir.get();
+  channels[0].additive = renderer.additive_signals(recording, rate);
+  // --multi-channel-output: one stream channel per RIR channel (kept alive while streaming).
+  const std::shared_ptr<const PlanRenderer::RirChannels> array =
+      options.multi_channel_output ? renderer.rir_channels(recording.rir, rate) : nullptr;
+  if (options.multi_channel_output && array) {
+    channels.assign(array->size(), StreamChannel());
+    for (size_t c = 0; c < array->size(); ++c) channels[c].rir = (*array)[c].get();
+  }
   StreamSettings settings;
   settings.temp_base = wav_path + ".spill";
-  return reverberate_stream(speech.path, where, speech.rx, 0, {channel}, renderer.reverb(), wav_path, settings)
+  return reverberate_stream(speech.path, where, speech.rx, 0, channels, renderer.reverb(), wav_path, settings)
       .clipped_samples;
 }
 

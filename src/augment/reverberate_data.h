@@ -42,6 +42,10 @@ struct ReverberateDataOptions {
   // --shift-output, --normalize-output, --snr-reference: the per-recording output rules, as the
   // pipes' wav-reverberate (or --write-wavs) applies them.
   ReverbOptions reverb;
+  // One output channel per channel of the recording's RIR (a microphone array's): one
+  // multichannel recording per utterance, as wav-reverberate --multi-channel-output=true. Noises
+  // are not added in this mode (they would need as many channels as the RIR).
+  bool multi_channel_output = false;
   bool include_original_data = false;
   Seed random_seed = 0;
   double source_sampling_rate_hz = 0.0;            // --sample-rate: > 0 the data dir's rate (rate_policy.h)
@@ -73,6 +77,7 @@ struct ReverberatePlan {
   SnrSpec foreground_snrs, background_snrs;
   PlanOptions planning;
   ReverbOptions reverb;
+  bool multi_channel_output = false;  // --multi-channel-output
   // --sample-rate: the data dir's rate when > 0, else (0) its first recording's; a recording at
   // another rate is resampled only when it was given (DirSampleRate, rate_policy.h).
   double sample_rate_hz = 0.0;

@@ -181,36 +181,40 @@ ApplySetSummary equalize_rir_set(const EqModel& model, const std::string& in_set
   Progress progress("equalizing " + in_set_path, refs.size());
   parallel_for(refs.size(), options.num_threads, [&](size_t i) {
     const RirRef& ref = refs[i];
-    Signal s = load_rir(ref);
-    if (s.sample_rate_hz != model.sample_rate_hz) {
+    std::vector<Signal> channels = load_rir_channels(ref);
+    if (channels.front().sample_rate_hz != model.sample_rate_hz) {
       if (!options.resample) {
-        throw Error(ref.where + ": RIR '" + ref.id + "' is at " + format_double(s.sample_rate_hz) +
+        throw Error(ref.where + ": RIR '" + ref.id + "' is at " + format_double(channels.front().sample_rate_hz) +
                     " Hz but the EQ model was fitted at " + format_double(model.sample_rate_hz) +
                     " Hz; pass --resample to resample the inputs to the model's rate");
       }
-      s = resample(s, model.sample_rate_hz);
+      for (Signal& s : channels) s = resample(s, model.sample_rate_hz);
     }
     Rng rng = Rng::for_item(options.seed, ref.id);
     const RelativeGainsDb target = draw_target_gains(model, rng);
     EqResult r;
+    std::vector<Signal> out;
     try {
-      r = equalize_rir(s, target, eq);
+      r = equalize_rir_channels(channels, target, eq, &out);  // out = channels 1..
     } catch (const Error& e) {
       throw Error(ref.where + ": " + e.what());
     }
+    out.insert(out.begin(), std::move(r.rir));
     if (options.format == SampleFormat::kInt16) {
-      float peak = 0.0f;
-      for (float v : r.rir.samples) peak = std::max(peak, std::abs(v));
+      float peak = 0.0f;  // of the whole array: one factor keeps the channels' levels
+      for (const Signal& c : out) {
+        for (float v : c.samples) peak = std::max(peak, std::abs(v));
+      }
       if (peak > int16_full_scale && peak < 1.0001f) {
         const float scale = static_cast<float>(int16_full_scale / peak);
-        for (float& v : r.rir.samples) v *= scale;
+        for (Signal& c : out) {
+          for (float& v : c.samples) v *= scale;
+        }
         ++capped;
       }
     }
     if (r.clamped) ++clamped;
-    writer.add(r.rir, ref.room_id);
-    r.rir.samples.clear();
-    r.rir.samples.shrink_to_fit();
+    writer.add_channels(out, ref.room_id);
     results[i] = std::move(r);
     progress.tick();
   });

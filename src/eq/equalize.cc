@@ -323,4 +323,26 @@ EqResult equalize_rir(const Signal& rir, const RelativeGainsDb& target_db, const
   return result;
 }
 
+EqResult equalize_rir_channels(const std::vector<Signal>& channels, const RelativeGainsDb& target_db,
+                               const EqApplyOptions& options, std::vector<Signal>* others) {
+  if (channels.empty()) throw Error("equalize_rir_channels: no channels");
+  EqResult result = equalize_rir(channels.front(), target_db, options);
+  others->clear();
+  if (channels.size() == 1) return result;
+  // The level factor channel 0 got: its output over its filtered input, compared at their peaks.
+  const std::vector<float> taps = design_eq_fir(result.node_gains_db, channels.front().sample_rate_hz, options.fir);
+  const std::vector<float> unscaled = filter_zero_delay(channels.front().samples, taps);
+  double peak_unscaled = 0.0, peak_out = 0.0;
+  for (float v : unscaled) peak_unscaled = std::max(peak_unscaled, static_cast<double>(std::abs(v)));
+  for (float v : result.rir.samples) peak_out = std::max(peak_out, static_cast<double>(std::abs(v)));
+  const double scale = peak_out / peak_unscaled;
+  for (size_t c = 1; c < channels.size(); ++c) {
+    Signal out = channels[c];
+    out.samples = filter_zero_delay(channels[c].samples, taps);
+    for (float& v : out.samples) v = static_cast<float>(v * scale);
+    others->push_back(std::move(out));
+  }
+  return result;
+}
+
 }  // namespace tsrir

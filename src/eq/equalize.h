@@ -60,6 +60,13 @@ struct EqResult {
 // Errors name rir.id: silent RIR, a band without energy, an unsupported rate.
 EqResult equalize_rir(const Signal& rir, const RelativeGainsDb& target_db, const EqApplyOptions& options);
 
+// A microphone array's RIR (channels[c] = microphone c, channel 0 the reference): the EQ is
+// designed on channel 0 by equalize_rir() (result.rir is its output) and the same final filter and
+// level factor are applied to every other channel (*others, in order), so the channels keep their
+// arrival-time and level differences.
+EqResult equalize_rir_channels(const std::vector<Signal>& channels, const RelativeGainsDb& target_db,
+                               const EqApplyOptions& options, std::vector<Signal>* others);
+
 // Filters with a linear-phase FIR and removes its (taps-1)/2 delay: y[n] = (x * h)[n + (taps-1)/2]
 // for n in [0, x.size()).
 std::vector<float> filter_zero_delay(const std::vector<float>& x, const std::vector<float>& taps);

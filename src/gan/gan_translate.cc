@@ -23,6 +23,54 @@ namespace fs = std::filesystem;
 
 namespace tsrir {
 
+namespace {
+
+// The generator over `rows` in passes of `batch_rows` rows (each padded with silent rows to
+// batch_rows when `pad`, else as many as there are): one output of kGanSliceLength per row.
+std::vector<std::vector<float>> generate_rows(gan::Generator& generator, const std::vector<const GanInput*>& rows,
+                                              size_t batch_rows, bool pad, const torch::Device& device,
+                                              torch::ScalarType dtype) {
+  std::vector<std::vector<float>> out;
+  for (size_t first = 0; first < rows.size(); first += batch_rows) {
+    const size_t n = std::min(rows.size() - first, batch_rows);
+    torch::Tensor x = torch::zeros({int64_t(pad ? batch_rows : n), 1, int64_t(kGanSliceLength)});
+    for (size_t i = 0; i < n; ++i) {
+      std::memcpy(x[i].data_ptr<float>(), rows[first + i]->samples.data(), kGanSliceLength * sizeof(float));
+    }
+    const torch::Tensor y =
+        generator->forward(x.to(device).to(dtype)).to(torch::kCPU).to(torch::kFloat32).contiguous();
+    for (size_t i = 0; i < n; ++i) {
+      const float* p = y[i].data_ptr<float>();
+      out.emplace_back(p, p + kGanSliceLength);
+    }
+  }
+  return out;
+}
+
+// One translated channel: its kept length, its level restored (--restore-level), a residual or
+// band-gain output brought back under full scale.
+Signal output_channel(const std::vector<float>& out, const GanInput& in, const std::string& id,
+                      const GanTranslateOptions& o, const GanSettings& settings) {
+  Signal rir;
+  rir.id = id;
+  rir.sample_rate_hz = kGanSampleRateHz;
+  const size_t length = o.keep_length < 0 ? in.length : size_t(o.keep_length);
+  float scale = o.restore_level ? float(in.peak) : 1.0f;
+  if (settings.generator != GanGenerator::kOriginal) {
+    // A residual or band-gain output is its peak-normalised input plus what the generator
+    // added, so its peak can pass 1: scale it back to the largest 16-bit value (32767/32768), the training data's peak.
+    constexpr float kFullScale = 32767.0f / 32768.0f;
+    float peak = 0.0f;
+    for (size_t k = 0; k < length; ++k) peak = std::max(peak, std::abs(out[k]));
+    if (peak > kFullScale) scale *= kFullScale / peak;
+  }
+  rir.samples.resize(length);
+  for (size_t k = 0; k < length; ++k) rir.samples[k] = out[k] * scale;
+  return rir;
+}
+
+}  // namespace
+
 GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   if (o.batch_size < 1) throw Error("--batch-size must be >= 1");
   if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
@@ -66,44 +114,37 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   RirSetWriter writer(o.out_dir, o.format);
   AudioReadOptions read_options;
   read_options.target_rate_hz = kGanSampleRateHz;
-  read_options.channel = -1;
   size_t cropped = 0;
   c10::InferenceMode inference;
   for (size_t begin = 0; begin < refs.size(); begin += size_t(o.batch_size)) {
     const size_t n = std::min(refs.size() - begin, size_t(o.batch_size));
-    std::vector<GanInput> inputs(n);
+    // Every channel of a multichannel RIR (a microphone array's) is a row of its own.
+    std::vector<std::vector<GanInput>> inputs(n);
     parallel_for(n, o.num_threads, [&](size_t i) {
-      inputs[i] = prepare_gan_input(load_rir(refs[begin + i], read_options));
+      for (const Signal& channel : load_rir_channels(refs[begin + i], read_options)) {
+        inputs[i].push_back(prepare_gan_input(channel));
+      }
     });
+    std::vector<const GanInput*> rows;
+    for (const auto& channels : inputs) {
+      for (const GanInput& in : channels) {
+        rows.push_back(&in);
+        cropped += in.cropped;
+      }
+    }
     // A short last batch is padded with silent rows to the batch size: a new input shape makes
     // oneDNN create (JIT-compile) every layer's kernels again, which costs more than computing
     // the padding rows. Rows do not interact (no batch statistics in the generator).
-    const size_t rows = refs.size() > size_t(o.batch_size) ? size_t(o.batch_size) : n;
-    torch::Tensor x = torch::zeros({int64_t(rows), 1, int64_t(kGanSliceLength)});
+    const bool pad = refs.size() > size_t(o.batch_size) || rows.size() > size_t(o.batch_size);
+    const std::vector<std::vector<float>> outputs =
+        generate_rows(generator, rows, size_t(o.batch_size), pad, device, dtype);
+    size_t row = 0;
     for (size_t i = 0; i < n; ++i) {
-      std::memcpy(x[i].data_ptr<float>(), inputs[i].samples.data(), kGanSliceLength * sizeof(float));
-      cropped += inputs[i].cropped;
-    }
-    const torch::Tensor y =
-        generator->forward(x.to(device).to(dtype)).to(torch::kCPU).to(torch::kFloat32).contiguous();
-    for (size_t i = 0; i < n; ++i) {
-      const float* out = y[i].data_ptr<float>();
-      Signal rir;
-      rir.id = refs[begin + i].id;
-      rir.sample_rate_hz = kGanSampleRateHz;
-      const size_t length = o.keep_length < 0 ? inputs[i].length : size_t(o.keep_length);
-      float scale = o.restore_level ? float(inputs[i].peak) : 1.0f;
-      if (settings.generator != GanGenerator::kOriginal) {
-        // A residual or band-gain output is its peak-normalised input plus what the generator
-        // added, so its peak can pass 1: scale it back to the largest 16-bit value (32767/32768), the training data's peak.
-        constexpr float kFullScale = 32767.0f / 32768.0f;
-        float peak = 0.0f;
-        for (size_t k = 0; k < length; ++k) peak = std::max(peak, std::abs(out[k]));
-        if (peak > kFullScale) scale *= kFullScale / peak;
+      std::vector<Signal> channels;
+      for (const GanInput& in : inputs[i]) {
+        channels.push_back(output_channel(outputs[row++], in, refs[begin + i].id, o, settings));
       }
-      rir.samples.resize(length);
-      for (size_t k = 0; k < length; ++k) rir.samples[k] = out[k] * scale;
-      writer.add(rir, refs[begin + i].room_id);
+      writer.add_channels(channels, refs[begin + i].room_id);
     }
     result.num_rirs += n;
     const auto now = Clock::now();

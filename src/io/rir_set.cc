@@ -95,10 +95,34 @@ Signal load_rir(const RirRef& ref, const AudioReadOptions& options) {
   return s;
 }
 
+std::vector<Signal> load_rir_channels(const RirRef& ref, const AudioReadOptions& options) {
+  AudioInfo info;
+  std::vector<std::vector<float>> channels =
+      read_audio_channels(ref.rxfilename, &info, ref.where + " (RIR '" + ref.id + "')");
+  std::vector<Signal> out;
+  for (std::vector<float>& c : channels) {
+    Signal s{ref.id, info.sample_rate_hz, std::move(c)};
+    if (options.target_rate_hz > 0 && s.sample_rate_hz != options.target_rate_hz) s = resample(s, options.target_rate_hz);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 RirSetWriter::RirSetWriter(const std::string& out_dir, SampleFormat format)
     : dir_(out_dir), format_(format) {}
 
-void RirSetWriter::add(const Signal& rir, const std::string& room_id) {
+void RirSetWriter::add(const Signal& rir, const std::string& room_id) { add_channels({rir}, room_id); }
+
+void RirSetWriter::add_channels(const std::vector<Signal>& channels, const std::string& room_id) {
+  if (channels.empty()) throw Error("RirSetWriter: an RIR needs at least one channel");
+  const Signal& rir = channels.front();
+  std::vector<std::vector<float>> samples;
+  for (const Signal& c : channels) {
+    if (c.id != rir.id || c.sample_rate_hz != rir.sample_rate_hz || c.size() != rir.size()) {
+      throw Error("RIR '" + rir.id + "': its channels differ in id, rate or length");
+    }
+    samples.push_back(c.samples);
+  }
   if (rir.id.empty() || rir.id.find_first_of("/ \t\r\n") != std::string::npos || rir.id == "." || rir.id == "..") {
     throw Error("RIR id '" + rir.id + "' cannot be used as a file name (empty, or contains '/' or whitespace)");
   }
@@ -116,7 +140,7 @@ void RirSetWriter::add(const Signal& rir, const std::string& room_id) {
     if (!ids_.insert(rir.id).second) throw Error("duplicate RIR id '" + rir.id + "' in output set");
     rows_.push_back({rir.id, room_id.empty() ? rir.id : room_id});
   }
-  write_wav((fs::path(dir_.path()) / (rir.id + ".wav")).string(), rir, o);
+  write_wav_channels((fs::path(dir_.path()) / (rir.id + ".wav")).string(), samples, rir.sample_rate_hz, o);
   if (clipped > 0) {
     throw Error("RIR '" + rir.id + "': " + std::to_string(clipped) +
                 " samples exceed full scale in 16-bit output; normalise it or use --format=float");

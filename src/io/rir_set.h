@@ -36,6 +36,10 @@ std::vector<RirRef> read_rir_refs(const std::string& path, InputLedger* inputs);
 // the id and where it was listed.
 Signal load_rir(const RirRef& ref, const AudioReadOptions& options = {});
 
+// Every channel of one RIR (a microphone array's: channel c = microphone c), each with id ref.id;
+// resampled to options.target_rate_hz if > 0 (options.channel is ignored).
+std::vector<Signal> load_rir_channels(const RirRef& ref, const AudioReadOptions& options = {});
+
 // Writes a complete RIR set into out_dir: its files appear at commit(); files of an earlier run of
 // the same program there are replaced, nothing else is touched.
 class RirSetWriter {
@@ -43,6 +47,9 @@ class RirSetWriter {
   RirSetWriter(const std::string& out_dir, SampleFormat format);
   // Thread-safe. Ids must be unique and usable as file names (else Error).
   void add(const Signal& rir, const std::string& room_id = "");
+  // One multichannel RIR (a microphone array's): channels[c] is channel c, all with the same id,
+  // rate and length.
+  void add_channels(const std::vector<Signal>& channels, const std::string& room_id = "");
   void commit();   // writes rir.scp and rir_list (sorted by id) and renames the directory
   const std::string& temp_dir() const { return dir_.path(); }
 

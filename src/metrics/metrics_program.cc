@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "io/atomic_output.h"
+#include "metrics/metric_columns.h"
 #include "io/common_options.h"
 #include "io/owned_output.h"
 #include "util/error.h"
@@ -15,6 +16,9 @@ namespace tsrir {
 void MetricsRunOptions::Register(OptionsItf* opts) {
   metrics.Register(opts);
   opts->Register("channel", &channel, "channel to measure (0-based; -1 = mean of all channels)");
+  opts->Register("all-channels", &all_channels,
+                 "measure every channel of multichannel RIRs (microphone arrays): rows <id>-ch<c> (c from 0) and "
+                 "<id>-mean (the channels' mean of each value); set statistics use the channel rows");
   CommonOptions(opts).threads(&num_threads, "RIRs are measured in parallel");
   opts->Register("skip-errors", &skip_errors, "report unreadable or unmeasurable RIRs and go on");
 }
@@ -28,8 +32,63 @@ void RirMetricsCommand::Register(OptionsItf* opts) {
   opts->Register("output", &output, "output file ('-' = stdout), written atomically");
 }
 
+namespace {
+
+double mean_of(const std::vector<RirMetrics>& channels, const std::function<double(const RirMetrics&)>& get) {
+  double sum = 0.0;
+  for (const RirMetrics& c : channels) sum += get(c);
+  return sum / channels.size();
+}
+
+BandMetrics band_mean(const std::vector<RirMetrics>& channels, const std::function<const BandMetrics*(const RirMetrics&)>& get) {
+  BandMetrics out = *get(channels.front());
+  const auto field = [&](double BandMetrics::*v) {
+    return mean_of(channels, [&](const RirMetrics& m) { return get(m) ? get(m)->*v : kMetricsNaN; });
+  };
+  for (double BandMetrics::*v : {&BandMetrics::t20_s, &BandMetrics::t30_s, &BandMetrics::edt_s, &BandMetrics::rt_s,
+                                 &BandMetrics::level_db, &BandMetrics::dynamic_range_db}) {
+    out.*v = field(v);
+  }
+  return out;
+}
+
+// Every channel of one RIR, measured on its own.
+std::vector<RirMetrics> measure_channels(const RirRef& ref, const MetricsOptions& options) {
+  AudioInfo info;
+  const std::vector<std::vector<float>> channels =
+      read_audio_channels(ref.rxfilename, &info, ref.where + " (RIR '" + ref.id + "')");
+  std::vector<RirMetrics> out;
+  for (size_t c = 0; c < channels.size(); ++c) {
+    Signal s{ref.id + "-ch" + std::to_string(c), info.sample_rate_hz, channels[c]};
+    out.push_back(measure_rir(s, options));
+  }
+  return out;
+}
+
+}  // namespace
+
+RirMetrics channel_mean(const std::vector<RirMetrics>& channels, const std::string& id) {
+  if (channels.empty()) throw Error("channel_mean: no channels");
+  RirMetrics out = channels.front();
+  out.id = id;
+  for (const MetricColumn& c : metric_columns()) {
+    out.*c.value = mean_of(channels, [&](const RirMetrics& m) { return m.*c.value; });
+  }
+  for (BandMetrics& b : out.bands) {
+    const double fc = b.center_hz;
+    b = band_mean(channels, [fc](const RirMetrics& m) { return m.band(fc); });
+  }
+  out.broadband = band_mean(channels, [](const RirMetrics& m) { return &m.broadband; });
+  out.warnings.clear();
+  for (const RirMetrics& m : channels) {
+    for (const std::string& w : m.warnings) out.warnings.push_back(m.id + ": " + w);
+  }
+  return out;
+}
+
 void measure_rir_refs(const std::vector<RirRef>& refs, const MetricsRunOptions& options,
                       const std::function<void(const MetricsOutcome&)>& on_result) {
+  if (options.all_channels && options.channel != 0) throw Error("--all-channels measures every channel: drop --channel");
   const int threads = std::max(1, options.num_threads);
   const size_t chunk = options.chunk_size > 0 ? options.chunk_size : 32 * (size_t)threads;
   AudioReadOptions read;
@@ -45,6 +104,12 @@ void measure_rir_refs(const std::vector<RirRef>& refs, const MetricsRunOptions& 
       out.id = ref.id;
       Signal rir;
       try {
+        if (options.all_channels) {
+          out.channels = measure_channels(ref, options.metrics);
+          out.metrics = channel_mean(out.channels, ref.id + "-mean");
+          out.ok = true;
+          return;
+        }
         rir = load_rir(ref, read);  // its errors name the list line and the id
       } catch (const std::exception& e) {
         out.error = e.what();
@@ -88,7 +153,8 @@ RunCounts summarise_set(const std::string& path, const MetricsRunOptions& run, M
   RunCounts c;
   measure_rir_refs(read_rir_refs(path, run_inputs()), run, [&](const MetricsOutcome& r) {
     if (r.ok) {
-      summary->add(r.metrics);
+      if (r.channels.empty()) summary->add(r.metrics);
+      for (const RirMetrics& m : r.channels) summary->add(m);
       ++c.ok;
     } else {
       log_warning("skipping: " + r.error);
@@ -126,7 +192,8 @@ int run_rir_metrics(const RirMetricsCommand& command) {
     MetricsReport report(output.stream(), command.format, command.bands);
     measure_rir_refs(refs, command.run, [&](const MetricsOutcome& r) {
       if (r.ok) {
-        report.add(r.metrics);
+        for (const RirMetrics& m : r.channels) report.add(m);
+        report.add(r.metrics, /*in_summary=*/r.channels.empty());
         ++total.ok;
       } else {
         log_warning("skipping: " + r.error);

@@ -31,8 +31,8 @@ MetricsReport::MetricsReport(std::ostream& out, MetricsFormat format, bool with_
 
 MetricsReport::~MetricsReport() = default;
 
-void MetricsReport::add(const RirMetrics& m) {
-  summary_.add(m);
+void MetricsReport::add(const RirMetrics& m, bool in_summary) {
+  if (in_summary) summary_.add(m);
   if (format_ == MetricsFormat::kTable) {
     if (!header_written_) {
       out_ << "# id";

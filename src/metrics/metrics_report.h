@@ -28,7 +28,8 @@ class MetricsReport {
   ~MetricsReport();
   // Rows in the order they are added. The table header is written with the first row; its band
   // columns are that RIR's bands (a set normally has one rate), other bands print as nan.
-  void add(const RirMetrics& m);
+  // in_summary false: a row printed but left out of the set statistics (an array's mean row).
+  void add(const RirMetrics& m, bool in_summary = true);
   // An RIR skipped with --skip-errors (kept in the JSON "errors" list).
   void add_error(const std::string& id, const std::string& message);
   // Writes the JSON summary (table: nothing more) and closes the document.

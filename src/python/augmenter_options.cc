@@ -48,6 +48,7 @@ const std::map<std::string, Field>& fields() {
     t["noise_start"] = choice_field(&Options::noise_start, noise_start_choices());
     t["shift_output"] = reverb_field(&ReverbOptions::shift_output);
     t["normalize_output"] = reverb_field(&ReverbOptions::normalize_output);
+    t["multi_channel_output"] = field(&Options::multi_channel_output);
     t["rir_smoothing_weight"] = field(&Options::rir_smoothing_weight);
     t["noise_smoothing_weight"] = field(&Options::noise_smoothing_weight);
     t["seed"] = field(&Options::random_seed);

@@ -73,9 +73,16 @@ class Augmenter {
     return plans_.at(index);
   }
 
-  // The far-field copy, as reverberate-data --write-wavs makes it (before its 16-bit encoding).
-  std::vector<float> materialise(const std::vector<float>& speech, double fs, const RecordingPlan& plan) {
-    return renderer_->render(speech, fs, plan);
+  // The far-field copy, as reverberate-data --write-wavs makes it (before its 16-bit encoding): one
+  // channel, or with multi_channel_output one per channel of the plan's RIR.
+  std::vector<std::vector<float>> materialise(const std::vector<float>& speech, double fs, const RecordingPlan& plan) {
+    if (options_.multi_channel_output) return renderer_->render_channels(speech, fs, plan);
+    return {renderer_->render(speech, fs, plan)};
+  }
+  // (samples,), or (channels, samples) with multi_channel_output (whatever the channel count).
+  py::array shaped(std::vector<std::vector<float>>&& channels) const {
+    if (options_.multi_channel_output) return py::array(to_numpy(channels));
+    return py::array(to_numpy(std::move(channels.front())));
   }
 
  private:
@@ -198,14 +205,14 @@ void bind_augmenter(py::module_& m) {
           "__call__",
           [](Augmenter& self, const py::handle& speech, double fs, const std::string& id, int copy) {
             std::vector<std::vector<float>> x = {to_samples(speech, "speech")};
-            std::vector<float> y;
+            std::vector<std::vector<float>> y;
             {
               py::gil_scoped_release release;
               const std::vector<float> at_rate =
                   self.dir_rate().speech_at_rate(std::move(x), fs, "speech of recording '" + id + "'");
               y = self.materialise(at_rate, self.dir_rate().rate_hz(), self.plan(id, copy));
             }
-            return to_numpy(std::move(y));
+            return self.shaped(std::move(y));
           },
           py::arg("speech"), py::arg("fs"), py::arg("id"), py::arg("copy") = 1,
           "The far-field copy of one utterance given its samples (1-D float32) at fs Hz, at the data dir's\n"
@@ -213,7 +220,7 @@ void bind_augmenter(py::module_& m) {
       .def(
           "augment",
           [](Augmenter& self, const std::string& id, int copy) {
-            std::vector<float> y;
+            std::vector<std::vector<float>> y;
             double fs = 0;
             {
               py::gil_scoped_release release;
@@ -225,7 +232,7 @@ void bind_augmenter(py::module_& m) {
               y = self.materialise(self.dir_rate().speech_at_rate(std::move(channels), info.sample_rate_hz, where), fs,
                                    plan);
             }
-            return py::make_tuple(to_numpy(std::move(y)), fs);
+            return py::make_tuple(self.shaped(std::move(y)), fs);
           },
           py::arg("id"), py::arg("copy") = 1,
           "Reads the recording's wav.scp entry (path or 'command |') and returns (far-field copy, fs): fs is\n"

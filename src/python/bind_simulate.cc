@@ -41,6 +41,17 @@ std::string values_text(const py::handle& value, const std::string& key) {
   return out;
 }
 
+// mic= of a room-list line: one position (x, y, z), or an array's positions ((x, y, z), ...) as
+// "x,y,z;x,y,z;...".
+std::string mics_text(const py::handle& mic) {
+  if (py::isinstance<py::str>(mic) || !py::isinstance<py::sequence>(mic)) return values_text(mic, "mic");
+  const py::sequence seq = py::reinterpret_borrow<py::sequence>(mic);
+  if (seq.size() == 0 || !py::isinstance<py::sequence>(seq[0])) return values_text(mic, "mic");
+  std::string out;
+  for (const py::handle& one : seq) out += (out.empty() ? "" : ";") + values_text(one, "mic");
+  return out;
+}
+
 }  // namespace
 
 void bind_simulate(py::module_& m) {
@@ -49,7 +60,7 @@ void bind_simulate(py::module_& m) {
       [](const py::handle& room, const py::handle& src, const py::handle& mic, const py::object& t60,
          const py::object& absorption, const py::object& scattering, const std::string& rir_id, const py::dict& extra) {
         std::string line = rir_id + " room=" + values_text(room, "room") + " src=" + values_text(src, "src") +
-                           " mic=" + values_text(mic, "mic");
+                           " mic=" + mics_text(mic);
         if (!t60.is_none()) line += " t60=" + values_text(t60, "t60");
         if (!absorption.is_none()) line += " absorption=" + values_text(absorption, "absorption");
         if (!scattering.is_none()) line += " scattering=" + values_text(scattering, "scattering");
@@ -63,7 +74,7 @@ void bind_simulate(py::module_& m) {
   m.def(
       "simulate_line",
       [](const std::string& line, double fs, const std::string& model_spec, int64_t seed, const std::string& length) {
-        std::vector<float> samples;
+        std::vector<std::vector<float>> channels;
         {
           py::gil_scoped_release release;
           if (!(fs >= 1000.0 && fs <= 384000.0))
@@ -73,13 +84,18 @@ void bind_simulate(py::module_& m) {
           const sim::RoomSpec prepared = model.prepare_room(room);
           const size_t n = sim::rir_length_samples(length, model.auto_length_s(prepared), fs);
           if (n < 16) throw Error("simulate(): RIR length below 16 samples");
-          samples = model.render(room, fs, n, static_cast<uint64_t>(seed)).samples;
+          for (Signal& c : model.render_array(room, fs, n, static_cast<uint64_t>(seed))) {
+            channels.push_back(std::move(c.samples));
+          }
         }
-        return to_numpy(std::move(samples));
+        // One microphone: (samples,) as before; an array: (microphones, samples).
+        if (channels.size() == 1) return py::array(to_numpy(std::move(channels.front())));
+        return py::array(to_numpy(channels));
       },
       py::arg("line"), py::arg("fs") = 16000.0, py::arg("model") = "gas", py::arg("seed") = 0,
       py::arg("length") = "1.0",
-      "Renders one rir-simulate room-list line ('<rir-id> room=.. src=.. mic=.. [key=value ...]').");
+      "Renders one rir-simulate room-list line ('<rir-id> room=.. src=.. mic=.. [key=value ...]'): "
+      "(samples,) for one microphone, (microphones, samples) for an array.");
   m.def(
       "read_room_list",
       [](const std::string& path) {
@@ -96,6 +112,9 @@ void bind_simulate(py::module_& m) {
           d["room_m"] = r.size_m;
           d["src_m"] = r.source_m;
           d["mic_m"] = r.mic_m;
+          py::list mics;
+          for (size_t m = 0; m < r.num_mics(); ++m) mics.append(py::cast(r.mic_position_m(m)));
+          d["mics_m"] = mics;
           d["line"] = sim::format_room_list_line(r);
           out.append(d);
         }

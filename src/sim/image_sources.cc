@@ -34,14 +34,9 @@ const KernelTable& kernel_table() {
   return table;
 }
 
-// One axis of the image lattice: coordinate offset to the mic and the per-band reflection factor.
-struct AxisImage {
-  double offset_sq;
-  int reflections;
-  BandValues factor;          // sqrt(1-a) products of the two walls of this axis
-};
+}  // namespace
 
-std::vector<AxisImage> axis_images(double length, double src, double mic, const BandValues& a_low,
+std::vector<AxisImage> axis_images(double length, double src, double centre, const BandValues& a_low,
                                    const BandValues& a_high, double reach) {
   std::vector<AxisImage> out;
   const long n_max = static_cast<long>(std::ceil((reach + length) / (2.0 * length))) + 1;
@@ -53,12 +48,15 @@ std::vector<AxisImage> axis_images(double length, double src, double mic, const 
   for (long n = -n_max; n <= n_max; ++n) {
     for (int q = 0; q <= 1; ++q) {
       // Image at 2nL + (1-2q) src: |n - q| reflections on the wall at 0, |n| on the wall at L.
-      const double offset = 2.0 * n * length + (1 - 2 * q) * src - mic;
+      const double position = 2.0 * n * length + (1 - 2 * q) * src;
+      const double offset = position - centre;
       if (std::abs(offset) > reach) continue;
       const int hits_low = static_cast<int>(std::labs(n - q));
       const int hits_high = static_cast<int>(std::labs(n));
       AxisImage img;
+      img.position = position;
       img.offset_sq = offset * offset;
+      img.mirror = 1 - 2 * q;
       img.reflections = hits_low + hits_high;
       for (int b = 0; b < kNumOctaveBands; ++b) {
         img.factor[b] = std::pow(r_low[b], hits_low) * std::pow(r_high[b], hits_high);
@@ -73,42 +71,84 @@ std::vector<AxisImage> axis_images(double length, double src, double mic, const 
   return out;
 }
 
+ImageLattice image_lattice(const RoomSpec& room, const Vec3& centre, double reach_m) {
+  ImageLattice lattice;
+  lattice.centre = centre;
+  lattice.reach_m = reach_m;
+  for (int i = 0; i < 3; ++i) {
+    lattice.axes[i] = axis_images(room.size_m[i], room.source_m[i], centre[i], room.absorption[2 * i],
+                                  room.absorption[2 * i + 1], reach_m);
+  }
+  return lattice;
+}
+
+namespace {
+
+// The polar patterns' gain for one image: the microphone's for the direction the sound arrives
+// from, the source's for the direction it left the real source in (the image's direction to the
+// microphone, mirrored back on every axis where the image is a mirror image).
+double pattern_gain(const RoomSpec& room, const AxisImage* xyz[3], const double offset[3], double distance_m) {
+  Vec3 arrival{}, departure{};
+  for (int i = 0; i < 3; ++i) {
+    arrival[i] = offset[i] / distance_m;  // from the microphone towards the image
+    departure[i] = -xyz[i]->mirror * arrival[i];
+  }
+  return polar_gain(room.mic_pattern.value_or(PolarPattern::kOmni), room.mic_axis, arrival) *
+         polar_gain(room.source_pattern.value_or(PolarPattern::kOmni), room.source_axis, departure);
+}
+
 }  // namespace
 
-std::vector<ImageArrival> image_arrivals(const RoomSpec& room, double max_delay_s) {
+std::vector<ImageArrival> image_arrivals(const ImageLattice& lattice, const RoomSpec& room, double max_delay_s) {
   const double c = room.speed_of_sound_m_s;
   const double reach = max_delay_s * c;
   const double reach_sq = reach * reach;
-  std::vector<AxisImage> axes[3];
-  for (int i = 0; i < 3; ++i) {
-    axes[i] = axis_images(room.size_m[i], room.source_m[i], room.mic_m[i], room.absorption[2 * i],
-                          room.absorption[2 * i + 1], reach);
-  }
+  // The lattice is sorted by distance from its centre; a microphone `spread` from it sees every
+  // image within reach among those within reach + spread of the centre.
+  double spread_sq = 0.0;
+  for (int i = 0; i < 3; ++i) spread_sq += (room.mic_m[i] - lattice.centre[i]) * (room.mic_m[i] - lattice.centre[i]);
+  const double outer = std::min(lattice.reach_m, reach + std::sqrt(spread_sq));
+  const double outer_sq = spread_sq == 0.0 ? reach_sq : outer * outer;
+  const bool directional = room.mic_pattern.value_or(PolarPattern::kOmni) != PolarPattern::kOmni ||
+                           room.source_pattern.value_or(PolarPattern::kOmni) != PolarPattern::kOmni;
   BandValues scatter_amp{};
   for (int b = 0; b < kNumOctaveBands; ++b) scatter_amp[b] = std::sqrt(1.0 - room.scattering[b]);
   std::vector<ImageArrival> out;
-  for (const AxisImage& x : axes[0]) {
-    if (x.offset_sq >= reach_sq) break;
-    for (const AxisImage& y : axes[1]) {
-      const double xy = x.offset_sq + y.offset_sq;
-      if (xy >= reach_sq) break;
-      for (const AxisImage& z : axes[2]) {
-        const double d_sq = xy + z.offset_sq;
-        if (d_sq >= reach_sq) break;
+  for (const AxisImage& x : lattice.axes[0]) {
+    if (x.offset_sq >= outer_sq) break;
+    const double dx = x.position - room.mic_m[0];
+    for (const AxisImage& y : lattice.axes[1]) {
+      if (x.offset_sq + y.offset_sq >= outer_sq) break;
+      const double dy = y.position - room.mic_m[1];
+      for (const AxisImage& z : lattice.axes[2]) {
+        if (x.offset_sq + y.offset_sq + z.offset_sq >= outer_sq) break;
+        const double dz = z.position - room.mic_m[2];
+        const double d_sq = dx * dx + dy * dy + dz * dz;
+        if (d_sq >= reach_sq) continue;
         ImageArrival arr;
         arr.distance_m = std::sqrt(d_sq);
         arr.delay_s = arr.distance_m / c;
         arr.reflections = x.reflections + y.reflections + z.reflections;
-        const double spread = 1.0 / (4.0 * kPi * arr.distance_m);
+        double spread = 1.0 / (4.0 * kPi * arr.distance_m);
         for (int b = 0; b < kNumOctaveBands; ++b) {
           arr.unscattered_amplitude[b] = spread * x.factor[b] * y.factor[b] * z.factor[b];
           arr.amplitude[b] = arr.unscattered_amplitude[b] * std::pow(scatter_amp[b], arr.reflections);
+        }
+        if (directional) {
+          const AxisImage* xyz[3] = {&x, &y, &z};
+          const double offset[3] = {dx, dy, dz};
+          const double gain = pattern_gain(room, xyz, offset, arr.distance_m);
+          for (double& a : arr.amplitude) a *= gain;
         }
         out.push_back(arr);
       }
     }
   }
   return out;
+}
+
+std::vector<ImageArrival> image_arrivals(const RoomSpec& room, double max_delay_s) {
+  return image_arrivals(image_lattice(room, room.mic_m, max_delay_s * room.speed_of_sound_m_s), room, max_delay_s);
 }
 
 double image_transition_time_s(const RoomSpec& room, double num_images) {
@@ -154,12 +194,36 @@ double ImageSourceComponent::max_decay_time_s(const RoomSpec& room) const {
 }
 
 void ImageSourceComponent::render_bands(const RenderContext& ctx, BandSignals& bands) const {
+  render_array_bands({&ctx}, {&bands});
+}
+
+void ImageSourceComponent::render_array_bands(const std::vector<const RenderContext*>& ctxs,
+                                              const std::vector<BandSignals*>& bands) const {
+  Vec3 centre{};
+  for (const RenderContext* ctx : ctxs) {
+    for (int i = 0; i < 3; ++i) centre[i] += ctx->room.mic_m[i] / ctxs.size();
+  }
+  if (ctxs.size() == 1) centre = ctxs[0]->room.mic_m;  // exactly the microphone
+  std::vector<double> transitions_s;
+  double reach_m = 0.0;
+  for (const RenderContext* ctx : ctxs) {
+    const RoomSpec& room = ctx->room;
+    transitions_s.push_back(std::min(transition_time_s(room), ctx->num_samples / ctx->sample_rate_hz));
+    double spread_sq = 0.0;
+    for (int i = 0; i < 3; ++i) spread_sq += (room.mic_m[i] - centre[i]) * (room.mic_m[i] - centre[i]);
+    reach_m = std::max(reach_m, transitions_s.back() * room.speed_of_sound_m_s + std::sqrt(spread_sq));
+  }
+  const ImageLattice lattice = image_lattice(ctxs[0]->room, centre, reach_m);
+  for (size_t m = 0; m < ctxs.size(); ++m) render_microphone(*ctxs[m], lattice, transitions_s[m], *bands[m]);
+}
+
+void ImageSourceComponent::render_microphone(const RenderContext& ctx, const ImageLattice& lattice,
+                                             double t_tr, BandSignals& bands) const {
   const RoomSpec& room = ctx.room;
   const double fs = ctx.sample_rate_hz;
-  const double t_tr = std::min(transition_time_s(room), ctx.num_samples / fs);
   const double window_start = 0.5 * t_tr;
   BandValues window_energy{};
-  for (const ImageArrival& arr : image_arrivals(room, t_tr)) {
+  for (const ImageArrival& arr : image_arrivals(lattice, room, t_tr)) {
     add_fractional_impulse(arr.delay_s * fs, arr.amplitude, bands);
     if (arr.delay_s >= window_start && arr.reflections > 0) {
       for (int b = 0; b < kNumOctaveBands; ++b) {

@@ -90,7 +90,8 @@ void parse_into(const std::string& spec, const std::string& whole, int depth,
 }  // namespace
 
 Rng RenderContext::rng_for(const std::string& component_name) const {
-  return Rng::for_item(seed, room.rir_id + '\x1f' + component_name);
+  const std::string mic = mic_index == 0 ? std::string() : "\x1fmic" + std::to_string(mic_index);
+  return Rng::for_item(seed, room.rir_id + '\x1f' + component_name + mic);
 }
 
 ComponentParams::ComponentParams(std::string component, std::map<std::string, std::string> values)
@@ -124,6 +125,10 @@ double ModelComponent::max_decay_time_s(const RoomSpec&) const { return 0.0; }
 void ModelComponent::adjust_room(RoomSpec&) const {}
 void ModelComponent::render_bands(const RenderContext&, BandSignals&) const {}
 void ModelComponent::process_rir(const RenderContext&, std::vector<float>&) const {}
+void ModelComponent::render_array_bands(const std::vector<const RenderContext*>& ctxs,
+                                        const std::vector<BandSignals*>& bands) const {
+  for (size_t m = 0; m < ctxs.size(); ++m) render_bands(*ctxs[m], *bands[m]);
+}
 
 void register_model_component(const std::string& name, const std::string& description,
                               ComponentFactory factory) {
@@ -215,7 +220,11 @@ RoomSpec Model::prepare_room(const RoomSpec& room) const {
 double Model::auto_length_s(const RoomSpec& prepared_room) const {
   double decay_s = 0.0;
   for (const auto& c : components_) decay_s = std::max(decay_s, c->max_decay_time_s(prepared_room));
-  const double length_s = prepared_room.source_mic_distance_m() / prepared_room.speed_of_sound_m_s + decay_s;
+  double distance_m = 0.0;  // to the farthest microphone of an array
+  for (size_t m = 0; m < prepared_room.num_mics(); ++m) {
+    distance_m = std::max(distance_m, prepared_room.for_mic(m).source_mic_distance_m());
+  }
+  const double length_s = distance_m / prepared_room.speed_of_sound_m_s + decay_s;
   // Whole 10 ms steps, so lengths are readable and stable under rounding.
   return std::max(0.1, std::ceil(length_s * 100.0 - 1e-9) / 100.0);
 }
@@ -233,25 +242,51 @@ BandSignals Model::render_band_signals(const RoomSpec& prepared_room, double sam
   return bands;
 }
 
-Signal Model::render(const RoomSpec& room, double sample_rate_hz, size_t num_samples, uint64_t seed) const {
+std::vector<Signal> Model::render_array(const RoomSpec& room, double sample_rate_hz, size_t num_samples,
+                                       uint64_t seed) const {
   if (!(sample_rate_hz > 0.0) || num_samples == 0) {
     throw Error("simulate: need a positive sample rate and length");
   }
   const RoomSpec prepared = prepare_room(room);
-  RenderFacts facts;
-  const BandSignals bands = render_band_signals(prepared, sample_rate_hz, num_samples, seed, &facts);
-  Signal out;
-  out.id = room.rir_id;
-  out.sample_rate_hz = sample_rate_hz;
-  out.samples = combine_octave_bands(bands, sample_rate_hz);
-  RenderContext ctx{prepared, sample_rate_hz, num_samples, seed, facts};
-  for (const auto& c : components_) {
-    if (c->stage() == ModelStage::kBroadband) c->process_rir(ctx, out.samples);
+  const size_t num_mics = prepared.num_mics();
+  std::vector<RoomSpec> mic_rooms;
+  for (size_t m = 0; m < num_mics; ++m) mic_rooms.push_back(prepared.for_mic(m));
+  std::vector<RenderContext> contexts;
+  contexts.reserve(num_mics);
+  std::vector<BandSignals> bands(num_mics);
+  std::vector<const RenderContext*> context_ptrs;
+  std::vector<BandSignals*> band_ptrs;
+  for (size_t m = 0; m < num_mics; ++m) {
+    contexts.push_back(RenderContext{mic_rooms[m], sample_rate_hz, num_samples, seed, {}, m});
+    contexts[m].facts.direct_delay_s = mic_rooms[m].source_mic_distance_m() / mic_rooms[m].speed_of_sound_m_s;
+    for (auto& b : bands[m].band) b.assign(num_samples, 0.0f);
+    context_ptrs.push_back(&contexts[m]);
+    band_ptrs.push_back(&bands[m]);
   }
-  if (out.samples.size() != num_samples) {
-    throw Error("simulate: a model component changed the RIR length");
+  for (const auto& c : components_) {
+    if (c->stage() == ModelStage::kBands) c->render_array_bands(context_ptrs, band_ptrs);
+  }
+  std::vector<Signal> out(num_mics);
+  for (size_t m = 0; m < num_mics; ++m) {
+    out[m].id = room.rir_id;
+    out[m].sample_rate_hz = sample_rate_hz;
+    out[m].samples = combine_octave_bands(bands[m], sample_rate_hz);
+    for (const auto& c : components_) {
+      if (c->stage() == ModelStage::kBroadband) c->process_rir(contexts[m], out[m].samples);
+    }
+    if (out[m].samples.size() != num_samples) {
+      throw Error("simulate: a model component changed the RIR length");
+    }
   }
   return out;
+}
+
+Signal Model::render(const RoomSpec& room, double sample_rate_hz, size_t num_samples, uint64_t seed) const {
+  if (room.num_mics() != 1) {
+    throw Error(room.where + ": " + std::to_string(room.num_mics()) +
+                " microphones (an array): this takes one microphone per room-list line (rir-simulate takes arrays)");
+  }
+  return std::move(render_array(room, sample_rate_hz, num_samples, seed).front());
 }
 
 }  // namespace tsrir::sim

@@ -78,7 +78,11 @@ struct RenderContext {
   size_t num_samples;
   uint64_t seed;
   mutable RenderFacts facts;
-  // A random stream for one component in this render (independent of threads and order).
+  // Which microphone of an array this context renders (room.mic_m is its position); 0 for a single
+  // microphone.
+  size_t mic_index = 0;
+  // A random stream for one component in this render (independent of threads and order); each
+  // microphone of an array has its own (microphone 0's is the single-microphone stream).
   Rng rng_for(const std::string& component_name) const;
 };
 
@@ -111,6 +115,12 @@ class ModelComponent {
 
   virtual void adjust_room(RoomSpec& room) const;
   virtual void render_bands(const RenderContext& ctx, BandSignals& bands) const;
+  // The kBands stage for every microphone of an array at once (ctxs[m] renders into *bands[m]).
+  // The default renders each microphone alone; components that share work across the array (ism:
+  // the image lattice) or couple the microphones (diffuse: the spatial coherence of the tail)
+  // override it.
+  virtual void render_array_bands(const std::vector<const RenderContext*>& ctxs,
+                                  const std::vector<BandSignals*>& bands) const;
   virtual void process_rir(const RenderContext& ctx, std::vector<float>& samples) const;
 };
 
@@ -140,6 +150,10 @@ class Model {
   // Renders one RIR of num_samples at sample_rate_hz; deterministic in (seed, room.rir_id).
   // The result's id is room.rir_id.
   Signal render(const RoomSpec& room, double sample_rate_hz, size_t num_samples, uint64_t seed) const;
+  // Every microphone of room's array (room.num_mics() signals, in array order, each with id
+  // room.rir_id); for one microphone the same samples as render().
+  std::vector<Signal> render_array(const RoomSpec& room, double sample_rate_hz, size_t num_samples,
+                                   uint64_t seed) const;
   // The kBands stage only (before band filtering), for analysis and fitting.
   BandSignals render_band_signals(const RoomSpec& prepared_room, double sample_rate_hz,
                                   size_t num_samples, uint64_t seed, RenderFacts* facts = nullptr) const;

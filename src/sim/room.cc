@@ -41,6 +41,13 @@ double RoomSpec::source_mic_distance_m() const {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+RoomSpec RoomSpec::for_mic(size_t mic) const {
+  RoomSpec single = *this;
+  single.mic_m = mic_position_m(mic);
+  single.array_m.clear();
+  return single;
+}
+
 double speed_of_sound_from_temperature_m_s(double temperature_c) {
   return 331.3 * std::sqrt(1.0 + temperature_c / 273.15);
 }
@@ -111,9 +118,12 @@ void validate_room(const RoomSpec& room) {
     }
   };
   check_inside(room.source_m, "source");
-  check_inside(room.mic_m, "microphone");
-  if (room.source_mic_distance_m() < 1e-3) {
-    throw Error(prefixed(w, "source and microphone are at the same point"));
+  for (size_t m = 0; m < room.num_mics(); ++m) {
+    const std::string what = room.array_m.empty() ? "microphone" : "microphone " + std::to_string(m + 1);
+    check_inside(room.mic_position_m(m), what.c_str());
+    if (room.for_mic(m).source_mic_distance_m() < 1e-3) {
+      throw Error(prefixed(w, "source and " + what + " are at the same point"));
+    }
   }
   for (int s = 0; s < kNumSurfaces; ++s) {
     for (int b = 0; b < kNumOctaveBands; ++b) {

@@ -5,9 +5,12 @@
 // Coordinates: the room spans [0, Lx] x [0, Ly] x [0, Lz] metres; z is height (floor z = 0).
 #pragma once
 #include <array>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "dsp/bands.h"
+#include "sim/polar_pattern.h"
 
 namespace tsrir::sim {
 
@@ -32,6 +35,14 @@ struct RoomSpec {
   Vec3 size_m{0.0, 0.0, 0.0};                // Lx, Ly, Lz
   Vec3 source_m{0.0, 0.0, 0.0};
   Vec3 mic_m{0.0, 0.0, 0.0};
+  // A microphone array: every microphone's position in array order (= the channel order of the
+  // RIR). Empty: one microphone at mic_m. With an array, mic_m is its first microphone.
+  std::vector<Vec3> array_m;
+  // Polar patterns and unit axes (sim/polar_pattern.h); the microphones of an array share theirs.
+  // Unset patterns are omni (rir-simulate fills them from --mic-pattern / --src-pattern).
+  std::optional<PolarPattern> mic_pattern, source_pattern;
+  Vec3 mic_axis{1.0, 0.0, 0.0};
+  Vec3 source_axis{1.0, 0.0, 0.0};
   // Random-incidence energy absorption coefficient per surface and band, in (0, 1].
   std::array<BandValues, kNumSurfaces> absorption{};
   // Fraction of the reflected energy scattered diffusely at each reflection, per band, [0, 1].
@@ -45,7 +56,11 @@ struct RoomSpec {
   double volume_m3() const;
   double surface_area_m2() const;            // all six surfaces
   double surface_area_m2(int surface) const;
-  double source_mic_distance_m() const;
+  double source_mic_distance_m() const;     // to mic_m
+  size_t num_mics() const { return array_m.empty() ? 1 : array_m.size(); }
+  Vec3 mic_position_m(size_t mic) const { return array_m.empty() ? mic_m : array_m.at(mic); }
+  // The same set-up seen by one microphone of the array alone (mic_m = its position, no array).
+  RoomSpec for_mic(size_t mic) const;
 };
 
 // c = 331.3 * sqrt(1 + T / 273.15) m/s (dry air; 343.2 m/s at 20 C).
@@ -68,7 +83,7 @@ double eyring_absorption_for_t60(double t60_s, double volume_m3, double area_m2,
 
 // Checks everything the simulator relies on; throws Error prefixed by room.where: positive finite
 // dimensions, source and microphone strictly inside the room and not at the same point,
-// absorption in (0, 1], scattering in [0, 1], positive c.
+// absorption in (0, 1], scattering in [0, 1], positive c; every microphone of an array likewise.
 void validate_room(const RoomSpec& room);
 
 }  // namespace tsrir::sim

@@ -1,5 +1,6 @@
 #include "sim/room_list.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -7,6 +8,7 @@
 #include <utility>
 
 #include "io/rxfile.h"
+#include "sim/mic_array.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -72,6 +74,80 @@ std::string format_vec3(const Vec3& v) {
   return format_double(v[0], 9) + "," + format_double(v[1], 9) + "," + format_double(v[2], 9);
 }
 
+std::string format_axis(const Vec3& axis) {
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  const double elevation = std::asin(std::clamp(axis[2], -1.0, 1.0)) * kRadToDeg;
+  return format_double(std::atan2(axis[1], axis[0]) * kRadToDeg, 9) + "," + format_double(elevation, 9);
+}
+
+// The pattern keys, written only where given (so a mono omni line keeps its old text).
+std::string format_transducer_keys(const RoomSpec& room) {
+  std::string out;
+  const Vec3 default_axis{1.0, 0.0, 0.0};
+  if (room.mic_pattern) out += " mic_pattern=" + choice_name(polar_pattern_choices(), *room.mic_pattern);
+  if (room.mic_axis != default_axis) out += " mic_dir=" + format_axis(room.mic_axis);
+  if (room.source_pattern) out += " src_pattern=" + choice_name(polar_pattern_choices(), *room.source_pattern);
+  if (room.source_axis != default_axis) out += " src_dir=" + format_axis(room.source_axis);
+  return out;
+}
+
+// The keys of microphones, arrays and polar patterns, kept apart from the room's own keys.
+struct TransducerKeys {
+  std::optional<std::vector<Vec3>> mics;     // mic=x,y,z[;x,y,z...]
+  std::optional<std::string> array_file;     // array=FILE (offsets from a single mic=)
+  std::optional<PolarPattern> mic_pattern, source_pattern;
+  std::optional<Vec3> mic_axis, source_axis;
+};
+
+Vec3 parse_axis(const std::string& value, const std::string& key, const std::string& context) {
+  const std::vector<double> v = parse_double_list(value, ',', context + ": " + key);
+  if (v.size() != 2 || !std::isfinite(v[0]) || !(v[1] >= -90.0 && v[1] <= 90.0)) {
+    throw Error(context + ": " + key + " needs azimuth,elevation in degrees (elevation in [-90, 90]), got '" +
+                value + "'");
+  }
+  return axis_from_degrees(v[0], v[1]);
+}
+
+// True when `key` is one of these keys (then parsed into *keys).
+bool parse_transducer_key(const std::string& key, const std::string& value, const std::string& context,
+                          TransducerKeys* keys) {
+  if (key == "mic") {
+    keys->mics.emplace();
+    for (const std::string& one : split(value, ';')) keys->mics->push_back(parse_vec3(one, key, context));
+  } else if (key == "array") {
+    if (value.empty()) throw Error(context + ": empty array= file name");
+    keys->array_file = value;
+  } else if (key == "mic_pattern" || key == "src_pattern") {
+    const PolarPattern p = parse_choice(polar_pattern_choices(), value, context + ": " + key);
+    (key == "mic_pattern" ? keys->mic_pattern : keys->source_pattern) = p;
+  } else if (key == "mic_dir" || key == "src_dir") {
+    (key == "mic_dir" ? keys->mic_axis : keys->source_axis) = parse_axis(value, key, context);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void apply_transducer_keys(const TransducerKeys& keys, const std::string& context, RoomSpec* room) {
+  if (!keys.mics) throw Error(context + ": missing mic=x,y,z");
+  room->mic_m = keys.mics->front();
+  if (keys.mics->size() > 1) room->array_m = *keys.mics;
+  if (keys.array_file) {
+    if (keys.mics->size() > 1) throw Error(context + ": with array=, mic= is the array centre (one position)");
+    const Vec3 centre = room->mic_m;
+    for (const Vec3& offset : read_array_geometry(*keys.array_file)) {
+      room->array_m.push_back({centre[0] + offset[0], centre[1] + offset[1], centre[2] + offset[2]});
+    }
+    room->mic_m = room->array_m.front();
+    if (room->array_m.size() == 1) room->array_m.clear();
+  }
+  if (room->array_m.size() > 64) throw Error(context + ": more than 64 microphones");
+  room->mic_pattern = keys.mic_pattern;
+  room->source_pattern = keys.source_pattern;
+  if (keys.mic_axis) room->mic_axis = *keys.mic_axis;
+  if (keys.source_axis) room->source_axis = *keys.source_axis;
+}
+
 }  // namespace
 
 RoomSpec parse_room_list_line(const std::string& line, const std::string& context) {
@@ -88,7 +164,8 @@ RoomSpec parse_room_list_line(const std::string& line, const std::string& contex
   }
 
   std::set<std::string> seen;
-  std::optional<Vec3> size, src, mic;
+  std::optional<Vec3> size, src;
+  TransducerKeys transducers;
   std::optional<BandValues> absorption_all, absorption_walls, scattering, t60;
   std::optional<BandValues> absorption_surface[kNumSurfaces];
   std::optional<double> temperature, humidity;
@@ -101,12 +178,12 @@ RoomSpec parse_room_list_line(const std::string& line, const std::string& contex
     const std::string key = field.substr(0, eq);
     const std::string value = field.substr(eq + 1);
     if (!seen.insert(key).second) throw Error(context + ": key '" + key + "' given twice");
-    if (key == "room") {
+    if (parse_transducer_key(key, value, context, &transducers)) {
+      continue;
+    } else if (key == "room") {
       size = parse_vec3(value, key, context);
     } else if (key == "src") {
       src = parse_vec3(value, key, context);
-    } else if (key == "mic") {
-      mic = parse_vec3(value, key, context);
     } else if (key == "absorption") {
       absorption_all = parse_band_values(value, key, context);
       check_absorption_range(*absorption_all, key, context);
@@ -145,15 +222,15 @@ RoomSpec parse_room_list_line(const std::string& line, const std::string& contex
       }
     } else {
       throw Error(context + ": unknown key '" + key + "' (known: " +
-                  "room src mic absorption absorption.<surface> scattering t60 room-id temperature humidity)");
+                  "room src mic array mic_pattern mic_dir src_pattern src_dir absorption absorption.<surface> "
+                  "scattering t60 room-id temperature humidity)");
     }
   }
   if (!size) throw Error(context + ": missing room=Lx,Ly,Lz");
   if (!src) throw Error(context + ": missing src=x,y,z");
-  if (!mic) throw Error(context + ": missing mic=x,y,z");
   room.size_m = *size;
   room.source_m = *src;
-  room.mic_m = *mic;
+  apply_transducer_keys(transducers, context, &room);
   if (temperature) {
     room.temperature_c = *temperature;
     room.speed_of_sound_m_s = speed_of_sound_from_temperature_m_s(*temperature);
@@ -223,7 +300,9 @@ std::string format_room_list_line(const RoomSpec& room) {
   std::string out = room.rir_id;
   out += " room=" + format_vec3(room.size_m);
   out += " src=" + format_vec3(room.source_m);
-  out += " mic=" + format_vec3(room.mic_m);
+  out += " mic=";
+  for (size_t m = 0; m < room.num_mics(); ++m) out += (m ? ";" : "") + format_vec3(room.mic_position_m(m));
+  out += format_transducer_keys(room);
   bool uniform = true;
   for (int s = 1; s < kNumSurfaces; ++s) uniform = uniform && room.absorption[s] == room.absorption[0];
   if (uniform) {
@@ -249,6 +328,12 @@ std::string room_list_keys_help() {
       "Room list: one RIR per line, '<rir-id> key=value ...'; blank lines and '#' comments ignored.\n"
       "  room=Lx,Ly,Lz        shoebox size in metres (required); the room spans [0,Lx]x[0,Ly]x[0,Lz], z up\n"
       "  src=x,y,z mic=x,y,z  source and microphone positions in metres, strictly inside (required)\n"
+      "  mic=x,y,z;x,y,z;...  a microphone array: one multichannel RIR, channels in this order\n"
+      "  array=FILE           an array from a geometry file (below), centred on mic=\n"
+      "  mic_pattern=P        polar pattern of the microphone(s): omni (default), subcardioid, cardioid,\n"
+      "                       hypercardioid, figure8 (g = a + (1-a) cos theta, a = 1, .75, .5, .25, 0)\n"
+      "  mic_dir=AZ,EL        their axis: azimuth (deg from +x towards +y), elevation (deg); default 0,0\n"
+      "  src_pattern=P src_dir=AZ,EL   the same for the source (default omni)\n"
       "  absorption=A         energy absorption of all six surfaces, in (0,1]; one value or 8 band values\n"
       "                       a63,a125,a250,a500,a1k,a2k,a4k,a8k (default 0.2)\n"
       "  absorption.walls=A   the four walls (x0,x1,y0,y1); overrides absorption=\n"
@@ -260,7 +345,8 @@ std::string room_list_keys_help() {
       "                       mean absorption below 0.01 is rejected as unreachable)\n"
       "  room-id=R            Kaldi room id written to rir_list (default: the rir id)\n"
       "  temperature=C        air temperature; sets c = 331.3 sqrt(1 + C/273.15) (default c = 343 m/s)\n"
-      "  humidity=H           relative humidity in % (used by air-absorption components; default 50)\n";
+      "  humidity=H           relative humidity in % (used by air-absorption components; default 50)\n" +
+      array_geometry_help();
 }
 
 }  // namespace tsrir::sim

@@ -19,10 +19,21 @@ void SimulateOptions::Register(OptionsItf* opts) {
   opts->RegisterAlias("fs", "sample-rate");
   opts->Register("length", &length, "RIR length in seconds, or 'auto' (direct delay + longest band T60)");
   opts->Register("model", &model, "model components, e.g. gas (= ism+diffuse)");
+  opts->RegisterEnum("mic-pattern", &mic_pattern, polar_pattern_choices(),
+                     "polar pattern of microphones whose room-list line gives no mic_pattern=");
+  opts->RegisterEnum("src-pattern", &source_pattern, polar_pattern_choices(),
+                     "polar pattern of sources whose room-list line gives no src_pattern=");
   CommonOptions(opts)
       .seed(&seed, "the stochastic parts")
       .threads(&num_threads, "RIRs are rendered in parallel")
       .audio_format(&format);
+}
+
+RoomSpec with_default_patterns(const RoomSpec& room, const SimulateOptions& options) {
+  RoomSpec out = room;
+  if (!out.mic_pattern) out.mic_pattern = options.mic_pattern;
+  if (!out.source_pattern) out.source_pattern = options.source_pattern;
+  return out;
 }
 
 size_t rir_length_samples(const std::string& length, double auto_length_s, double sample_rate_hz) {
@@ -58,8 +69,9 @@ void simulate_room_list(const std::vector<RoomSpec>& rooms, const std::string& o
   std::atomic<size_t> done{0};
   const size_t progress_every = std::max<size_t>(1, rooms.size() / 10);
   parallel_for(rooms.size(), options.num_threads, [&](size_t i) {
-    Signal rir = model.render(rooms[i], options.sample_rate_hz, lengths[i], options.seed);
-    writer.add(rir, rooms[i].effective_room_id());
+    const std::vector<Signal> rir = model.render_array(with_default_patterns(rooms[i], options),
+                                                        options.sample_rate_hz, lengths[i], options.seed);
+    writer.add_channels(rir, rooms[i].effective_room_id());
     const size_t d = ++done;
     if (rooms.size() >= 100 && d % progress_every == 0) {
       log_info("simulated " + std::to_string(d) + " / " + std::to_string(rooms.size()) + " RIRs");

@@ -113,3 +113,30 @@ TEST(Equalize, ClearErrors) {
   const Signal x = eqtest::decaying_noise_rir("x", 16000, 4000, 0.2, 10, 0.0, 2);
   EXPECT_THROW(equalize_rir(x, bad, {}), Error);
 }
+
+TEST(Equalize, AnArraysChannelsGetChannelZerosFilterAndKeepTheirTimeAndLevelDifferences) {
+  // Channel 1 is channel 0 delayed by 5 samples at half the level, channel 2 another RIR: after
+  // the EQ, channel 0 is exactly equalize_rir()'s output, channel 1 is still channel 0's output
+  // delayed by 5 samples at half the level (the same filter and scale), and channel 2 is channel
+  // 2's input through that filter (its own gains are not matched to the target).
+  const Signal x0 = eqtest::decaying_noise_rir("arr", 16000, 8000, 0.5, 200, 0.0, 7);
+  Signal x1 = x0;
+  std::fill(x1.samples.begin(), x1.samples.end(), 0.0f);
+  for (size_t i = 5; i < x0.size(); ++i) x1.samples[i] = 0.5f * x0.samples[i - 5];
+  Signal x2 = eqtest::decaying_noise_rir("arr", 16000, 8000, 0.9, 230, 0.0, 8);
+  EqApplyOptions o;
+  std::vector<Signal> others;
+  const EqResult r = equalize_rir_channels({x0, x1, x2}, kTarget, o, &others);
+  ASSERT_EQ(others.size(), 2u);
+  EXPECT_EQ(r.rir.samples, equalize_rir(x0, kTarget, o).rir.samples);
+  double peak = 0.0;
+  for (float v : r.rir.samples) peak = std::max(peak, static_cast<double>(std::abs(v)));
+  // Away from the ends (the filter's support, the cropped first samples) the relation is exact
+  // up to float rounding.
+  for (size_t i = 600; i + 600 < x0.size(); ++i) {
+    ASSERT_NEAR(others[0].samples[i], 0.5f * r.rir.samples[i - 5], 1e-5 * peak) << "sample " << i;
+  }
+  EXPECT_EQ(others[1].id, "arr");
+  EXPECT_EQ(peak_index(others[1].samples), 230u);
+  EXPECT_EQ(others[1].size(), x2.size());
+}

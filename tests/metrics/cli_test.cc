@@ -211,6 +211,50 @@ TEST_F(RirMetricsCli, ChannelSelection) {
   EXPECT_NE(run("--channel=2 " + w).status, 0);
 }
 
+TEST_F(RirMetricsCli, AllChannelsGivesARowPerChannelAndTheArrayMean) {
+  // Three channels of known T60 (0.3, 0.6, 0.9 s): rows <id>-ch0..2 equal to measuring each with
+  // --channel=c, then <id>-mean, the mean of each column; the set statistics count the 3 channels.
+  std::vector<std::vector<float>> channels;
+  for (int c = 0; c < 3; ++c) {
+    tsrir_test::ExponentialRirSpec spec;
+    spec.t60_s = 0.3 * (c + 1);
+    spec.seed = 11 + c;
+    channels.push_back(tsrir_test::exponential_rir(spec).samples);
+  }
+  const std::string w = wav("arr.wav", channels);
+  const ProgramRun all = run("--all-channels " + w);
+  ASSERT_EQ(all.status, 0) << all.err;
+  const std::vector<std::string> rows = lines(all.out);
+  ASSERT_EQ(rows.size(), 5u) << all.out;
+  std::vector<double> sum(6, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    const ProgramRun one = run("--channel=" + std::to_string(c) + " " + w);
+    ASSERT_EQ(one.status, 0) << one.err;
+    const std::string values = lines(one.out).at(1).substr(lines(one.out).at(1).find(' '));
+    EXPECT_EQ(rows[1 + c], "arr-ch" + std::to_string(c) + values);
+    std::stringstream ss(values);
+    for (double& s : sum) {
+      double v;
+      ss >> v;
+      s += v / 3.0;
+    }
+  }
+  std::stringstream mean(rows[4]);
+  std::string id;
+  mean >> id;
+  EXPECT_EQ(id, "arr-mean");
+  for (double s : sum) {
+    double v;
+    mean >> v;
+    EXPECT_NEAR(v, s, 1e-5 * std::abs(s) + 1e-9);
+  }
+  EXPECT_NEAR(sum[0], 0.6, 0.04);  // T60
+  const ProgramRun json = run("--all-channels --format=json " + w);
+  ASSERT_EQ(json.status, 0) << json.err;
+  EXPECT_NE(json.out.find("\"count\": 3"), std::string::npos) << json.out.substr(json.out.find("summary"));
+  EXPECT_NE(run("--all-channels --channel=1 " + w).status, 0);
+}
+
 TEST_F(RirMetricsCli, IrstatsDefinitionRuns) {
   const std::string w = decay_wav("x.wav", 0.4, 1);
   const ProgramRun r = run("--definition=irstats --bands " + w);

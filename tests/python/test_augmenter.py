@@ -8,6 +8,7 @@ import os
 import random
 import shlex
 import shutil
+import subprocess
 import unittest
 
 from tsrir_testlib import (np, program, read_wav16, run, speech_like, synthetic_rir, temp_dir,
@@ -221,6 +222,82 @@ class AugmenterVsReverberateDataZeroStart(AugmenterVsReverberateData):
     # Kaldi's way: noise from its start (with noise types: background noise extended to the
     # recording by a nested wav-reverberate, point sources at random start times).
     OVERRIDES = {"noise_start": "zero"}
+
+
+def run_bytes(args):
+    """A program's stdout as bytes (a wav written to '-')."""
+    return subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, check=True).stdout
+
+
+def read_bytes(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+class MultichannelFarField(unittest.TestCase):
+    """--multi-channel-output=true with a microphone array's RIRs (rir-simulate, 3 microphones):
+    one 3-channel recording per utterance; channel c is what wav-reverberate makes with RIR
+    channel c alone (--rir-channel=c, the mono path); the pipes, --write-wavs (in memory and
+    streamed) and the Augmenter agree; noises are refused with a clear error."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = d = temp_dir("mc")
+        os.makedirs(d + "/in")
+        wav_scp = []
+        for i, n in enumerate((12000, 20000)):
+            write_wav16("%s/u%d.wav" % (d, i), speech_like(n, FS, 300 + i), FS)
+            wav_scp.append("u%d %s/u%d.wav\n" % (i, d, i))
+        write_text(d + "/in/wav.scp", "".join(wav_scp))
+        write_text(d + "/in/utt2spk", "u0 s0\nu1 s1\n")
+        write_text(d + "/rooms.txt", "arr room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2;4.05,3,1.2;4.1,3.02,1.2 t60=0.4\n")
+        run([program("rir-simulate"), "--length=0.4", d + "/rooms.txt", d + "/rirs"])
+        cls.base = ["--multi-channel-output=true", "--rir-set-parameters", d + "/rirs/rir_list",
+                    "--random-seed", "3"]
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def test_one_multichannel_recording_per_utterance_everywhere_equal(self):
+        d = self.dir
+        run([program("reverberate-data")] + self.base + [d + "/in", d + "/pipes"])
+        run([program("reverberate-data")] + self.base + ["--write-wavs", d + "/w", d + "/in", d + "/wavs"])
+        run([program("reverberate-data")] + self.base + ["--max-in-memory-duration", "0.5", "--write-wavs",
+                                                          d + "/ws", d + "/in", d + "/streamed"])
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], seed=3,
+                              multi_channel_output=True)
+        pipes = read_scp(d + "/pipes/wav.scp")
+        self.assertEqual(sorted(pipes), ["u0", "u1"])
+        for utt, pipe in pipes.items():
+            self.assertIn("--multi-channel-output=true", pipe)
+            piped = run_bytes(["sh", "-c", pipe.rstrip().rstrip("|")])
+            written = read_bytes("%s/w/%s.wav" % (d, utt))
+            self.assertEqual(piped, written, utt)
+            self.assertEqual(read_bytes("%s/ws/%s.wav" % (d, utt)), written, utt)  # streamed (> 0.5 s)
+            x, fs = read_wav16(written)
+            self.assertEqual(x.shape[0], 3)
+            y, _ = aug.augment(utt)
+            self.assertEqual(y.shape, x.shape)
+            self.assertEqual(tsrir.encode_wav(y, fs), written)
+            for c in range(3):
+                mono, _ = read_wav16(run_bytes([program("wav-reverberate"), "--shift-output=true", "--rir-channel=%d" % c,
+                                          "--impulse-response=" + d + "/rirs/arr.wav", "%s/%s.wav" % (d, utt), "-"]))
+                np.testing.assert_array_equal(x[c], mono[0], "%s channel %d" % (utt, c))
+
+    def test_noises_and_multichannel_speech_are_clear_errors(self):
+        d = self.dir
+        write_wav16(d + "/noise.wav", 0.1 * np.ones(100), FS)
+        write_text(d + "/noise_list", "--noise-id n --noise-type isotropic %s/noise.wav\n" % d)
+        with self.assertRaises(Exception) as caught:
+            run([program("reverberate-data")] + self.base + ["--noise-set-parameters", d + "/noise_list",
+                                                              d + "/in", d + "/bad"])
+        self.assertIn("--multi-channel-output", str(caught.exception))
+        self.assertFalse(os.path.exists(d + "/bad"))
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], multi_channel_output=True)
+        with self.assertRaises(ValueError) as caught:
+            aug(np.zeros((4, 8000), dtype=np.float32), FS, "u0")
+        self.assertIn("multi_channel_output", str(caught.exception))
 
 
 def _work_with(aug):

@@ -45,10 +45,13 @@ class TypedErrors(unittest.TestCase):
     def test_wrong_values_are_value_errors_naming_the_argument(self):
         x, h = np.ones(200), np.r_[1.0, np.zeros(9)]
         cases = [
-            (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=[(2, 2, 1), (3, 3, 1)]), "mic"),
+            (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=[(2, 2), (3, 3)]), "mic"),
+            (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=(2, 2, 1), extra={"mic_pattern": "shotgun"}),
+             "mic_pattern"),
             (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=(2, 2, 1), fs=-16000), "fs"),
             (lambda: tsrir.simulate(room=(6, 4, 3), src=(1, 1, 1), mic=(2, 2, 1), t60=[0.5, 0.4]), "t60"),
             (lambda: tsrir.reverberate(np.ones((2, 2, 2)), h, FS), "speech"),
+            (lambda: tsrir.reverberate(np.ones((4, 200)), h, FS, multi_channel_output=True), "multi_channel_output"),
             (lambda: tsrir.reverberate(x, h, FS, shift="onset"), "shift"),
             (lambda: tsrir.reverberate(x, h, FS, noise=[x, x], snr_db=[1, 2, 3]), "snr_db"),
             (lambda: tsrir.encode_wav(x, FS, format="mp3"), "format"),

@@ -190,6 +190,11 @@ ROOMS = [
      dict(room=[5, 4, 2.8], src=[1, 1, 1.5], mic=[3.5, 2.5, 1.2],
           absorption=[0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.4], scattering=0.3,
           extra={"room-id": "roomB", "absorption.floor": 0.5})),
+    # A 3-microphone array of cardioids facing the source: one 3-channel RIR, (3, samples) here.
+    ("r3", "room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2;4.05,3,1.2;4.1,3,1.2 mic_pattern=cardioid mic_dir=-140,0 "
+           "src_pattern=subcardioid t60=0.5",
+     dict(room=(6, 4.5, 3), src=(2, 1.5, 1.6), mic=[(4, 3, 1.2), (4.05, 3, 1.2), (4.1, 3, 1.2)], t60=0.5,
+          extra={"mic_pattern": "cardioid", "mic_dir": (-140, 0), "src_pattern": "subcardioid"})),
 ]
 
 
@@ -216,7 +221,10 @@ class SimulateMetricsEq(unittest.TestCase):
                 got = tsrir.simulate(fs=16000, seed=3, model=model, length=length if length == "auto" else 0.5,
                                      rir_id=rid, **kwargs)
                 self.assertEqual(fs, 16000)
-                np.testing.assert_array_equal(got, expected[0], "%s %s" % (model, rid))
+                # One microphone: (samples,); an array: (microphones, samples), channel order kept.
+                np.testing.assert_array_equal(got, expected[0] if got.ndim == 1 else expected,
+                                              "%s %s" % (model, rid))
+                self.assertEqual(got.ndim, 2 if rid == "r3" else 1)
                 self.assertGreater(np.abs(got).max(), 0.01)
         # A different seed or id gives a different diffuse tail (the seed is really used).
         a = tsrir.simulate(seed=3, rir_id="r1", length=0.5, **ROOMS[0][2])

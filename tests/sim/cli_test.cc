@@ -97,6 +97,26 @@ TEST_F(SimCli, FloatFormat) {
   EXPECT_FALSE(fs::exists(path("out16")));
 }
 
+TEST_F(SimCli, ArraysWriteOneChannelPerMicrophoneAndPatternDefaultsComeFromTheOptions) {
+  // A line without mic_pattern= takes --mic-pattern / --src-pattern; a line's own key wins.
+  write_text("rooms.txt", "arr room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2;4.05,3,1.2;4.1,3,1.2 t60=0.4\n");
+  write_text("keyed.txt", "arr room=6,4.5,3 src=2,1.5,1.6 mic=4,3,1.2;4.05,3,1.2;4.1,3,1.2 t60=0.4 "
+                          "mic_pattern=cardioid src_pattern=hypercardioid\n");
+  const std::string common = "--format=float --length=0.3 ";
+  ASSERT_EQ(run("rir-simulate", common + path("rooms.txt") + " " + path("omni")), 0);
+  ASSERT_EQ(run("rir-simulate", common + "--mic-pattern=cardioid --src-pattern=hypercardioid " + path("rooms.txt") +
+                                    " " + path("by_option")),
+            0);
+  ASSERT_EQ(run("rir-simulate", common + "--mic-pattern=figure8 " + path("keyed.txt") + " " + path("by_key")), 0);
+  tsrir::AudioInfo info;
+  EXPECT_EQ(tsrir::read_audio_channels(path("omni/arr.wav"), &info).size(), 3u);
+  EXPECT_EQ(read_file(path("by_option/arr.wav")), read_file(path("by_key/arr.wav")));
+  EXPECT_NE(read_file(path("by_option/arr.wav")), read_file(path("omni/arr.wav")));
+  std::string err;
+  EXPECT_NE(run("rir-simulate", "--mic-pattern=shotgun " + path("rooms.txt") + " " + path("bad"), &err), 0);
+  EXPECT_NE(err.find("cardioid"), std::string::npos) << err;  // the choices are listed
+}
+
 TEST_F(SimCli, BadInputFailsWithLocationAndWritesNothing) {
   struct Case { std::string line, fragment; };
   const Case cases[] = {

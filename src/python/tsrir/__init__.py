@@ -99,7 +99,7 @@ def room_list_line(room, src, mic, t60=None, absorption=None, scattering=None, r
         if not isinstance(value, str):
             _c.numbers(value, "extra[%r]" % key)
     return _c.call(_tsrir.room_list_line, _c.position(room, "room"), _c.position(src, "src"),
-                   _c.position(mic, "mic"), _band_values(t60, "t60", "s"),
+                   _c.positions(mic, "mic"), _band_values(t60, "t60", "s"),
                    _band_values(absorption, "absorption", "energy coefficient"),
                    _band_values(scattering, "scattering", "coefficient"), _c.text(rir_id, "rir_id"), extra)
 
@@ -109,17 +109,20 @@ def simulate(room, src, mic, fs=16000, t60=None, absorption=None, scattering=Non
     """One room impulse response from rir-simulate's geometric model.
 
     room: (x, y, z) room size in metres; src, mic: (x, y, z) source and microphone positions in
-    metres, inside the room. fs: sampling rate, Hz. t60: reverberation time in seconds, or
+    metres, inside the room; mic may be an array's positions ((x, y, z), ...), channels in that
+    order. fs: sampling rate, Hz. t60: reverberation time in seconds, or
     absorption: energy absorption coefficient in [0, 1]; each one value or 8 octave-band values
     (62.5 Hz .. 8 kHz); neither: absorption 0.2. scattering: one or 8 coefficients (default 0.1).
     model: rir-simulate --model ('gas' = image sources + diffuse tail; '+modes', '+air', ... see
     tsrir.model_components_help()). seed: int, with rir_id seeds the stochastic tail as
     rir-simulate does. length: seconds, or "auto" (until the decay is 60 dB down). extra: more
     room-list keys, e.g. {"absorption.floor": 0.5, "temperature": 25, "room-id": "r1"}
-    (tsrir.room_list_keys_help()).
+    (tsrir.room_list_keys_help()); polar patterns: {"mic_pattern": "cardioid", "mic_dir": (90, 0),
+    "src_pattern": ..., "src_dir": ...}.
 
-    Returns float32 numpy (samples,) with samples = round(length * fs): the samples
-    `rir-simulate --format=float` writes for the same room-list line, fs, model, length and seed.
+    Returns float32 numpy (samples,) with samples = round(length * fs) for one microphone,
+    (microphones, samples) for an array: the samples `rir-simulate --format=float` writes for the
+    same room-list line, fs, model, length and seed.
     """
     line = room_list_line(room, src, mic, t60, absorption, scattering, rir_id, extra)
     return simulate_line(line, fs, model, seed, length)
@@ -127,14 +130,15 @@ def simulate(room, src, mic, fs=16000, t60=None, absorption=None, scattering=Non
 
 def simulate_line(line, fs=16000, model="gas", seed=0, length=1.0):
     """Renders one rir-simulate room-list line ('<rir-id> room=.. src=.. mic=.. [key=value ...]').
-    fs: Hz; length: seconds or "auto". Returns float32 numpy (samples,)."""
+    fs: Hz; length: seconds or "auto". Returns float32 numpy (samples,), or (microphones, samples)
+    for a line with a microphone array."""
     return _c.call(_tsrir.simulate_line, _c.text(line, "line"), _c.sample_rate(fs), _c.text(model, "model"),
                    _c.number(seed, "seed", integer=True), _length_text(length))
 
 
 def read_room_list(path):
     """An rir-simulate room list, parsed by the simulator's own parser: one dict per RIR with
-    rir_id, room_id, room_m, src_m, mic_m (metres) and line."""
+    rir_id, room_id, room_m, src_m, mic_m, mics_m (every microphone of an array; metres) and line."""
     return _c.call(_tsrir.read_room_list, _c.path(path, "path"))
 
 
@@ -261,6 +265,12 @@ def reverberate(speech, rir, fs, noise=None, snr_db=None, shift="peak", normaliz
     starts = _per_noise(start_time_s, "start_time_s", "s", max(count, 1))
     offsets = _per_noise(offset_s, "offset_s", "s", max(count, 1))
     multi = _c.flag(multi_channel_output, "multi_channel_output")
+    if multi and x.ndim == 2 and x.shape[0] > 1 and (h is None or h.ndim == 1 or h.shape[0] == 1):
+        # wav-reverberate's rule: one output channel per RIR channel, from one speech channel. A
+        # (1, n) result for multichannel speech would look like a lost array.
+        raise ValueError("multi_channel_output: gives one output channel per RIR channel, but the RIR has one "
+                         "channel and speech has %d; reverberate each speech channel (speech[c]) or give a "
+                         "multichannel RIR (e.g. rir-simulate with mic=x,y,z;x,y,z;...)" % x.shape[0])
     input_channel = _channel_choice(input_channel, x, "input_channel", "speech")
     rir_channel = _channel_choice(rir_channel, h, "rir_channel", "rir", used_by_all=multi)
     first_noise = noises[0] if isinstance(noises, list) and noises else noises

@@ -106,10 +106,16 @@ class Augmenter:
     def __call__(self, speech, fs, id, copy=1):
         """The far-field copy of one utterance given its samples: speech (samples,) at fs Hz (a
         (channels, samples) input uses channel 0, with a TsrirWarning). Returns float32 (samples,),
-        a tensor for a tensor input."""
+        or with multi_channel_output=True (channels, samples), one channel per channel of the
+        recording's RIR (a microphone array's); a tensor for a tensor input."""
         like = _c.Like(speech)
         x = _c.array(speech, "speech", (1, 2), "(samples,)")
         if x.ndim == 2:
+            if x.shape[0] > 1 and self.options.get("multi_channel_output"):
+                # The array's channels come from one speech channel through the RIR's channels; a
+                # multichannel speech would silently lose all but one of its channels.
+                raise ValueError("speech: multi_channel_output makes one output channel per RIR channel from one "
+                                 "speech channel, but speech has %d channels; pass speech[c]" % x.shape[0])
             if x.shape[0] > 1:
                 _c.warnings.warn("speech has %d channels; using channel 0 (pass speech[c] to choose another)"
                                  % x.shape[0], _c.TsrirWarning, stacklevel=2)
@@ -120,7 +126,8 @@ class Augmenter:
 
     def augment(self, id, copy=1):
         """Reads recording `id`'s wav.scp entry (a path or 'command |') and returns
-        (far-field copy float32 numpy (samples,), fs int Hz)."""
+        (far-field copy float32 numpy (samples,) -- (channels, samples) with multi_channel_output --,
+        fs int Hz)."""
         y, fs = _c.call(self._impl.augment, _c.text(id, "id"), _c.number(copy, "copy", integer=True, minimum=1))
         return y, _c.rate_out(fs)
 

@@ -123,6 +123,17 @@ def numbers(value, name, unit="", count=None):
     return out
 
 
+def positions(value, name):
+    """A point (x, y, z) in metres, or a microphone array's points ((x, y, z), ...)."""
+    if not isinstance(value, (str, bytes)) and hasattr(value, "__len__") and np.ndim(
+            np.asarray(value.detach().cpu()) if is_tensor(value) else np.asarray(value, dtype=object)) == 2:
+        items = list(value)
+        if not 1 <= len(items) <= 64:
+            raise ValueError("%s: an array has 1 to 64 microphones, got %d" % (name, len(items)))
+        return tuple(position(v, "%s[%d]" % (name, i)) for i, v in enumerate(items))
+    return position(value, name)
+
+
 def position(value, name):
     """A point (x, y, z) in metres."""
     if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") and not is_tensor(value):
