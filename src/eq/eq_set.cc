@@ -7,7 +7,9 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "io/atomic_output.h"
 #include "io/owned_output.h"
@@ -58,24 +60,25 @@ namespace {
 class RateGuard {
  public:
   explicit RateGuard(double target_hz) : target_hz_(target_hz) {}
-  Signal load(const RirRef& ref) {
+  // Every channel of the RIR (a microphone array's: one measured response per microphone).
+  std::vector<Signal> load(const RirRef& ref) {
+    std::vector<Signal> channels = load_rir_channels(ref);
+    const double rate_hz = channels.front().sample_rate_hz;
     if (target_hz_ > 0) {
-      Signal s = load_rir(ref);
-      if (s.sample_rate_hz != target_hz_) {
+      if (rate_hz != target_hz_) {
         ++resampled_;
-        source_rate_hz_.store(s.sample_rate_hz);
-        s = resample(s, target_hz_);
+        source_rate_hz_.store(rate_hz);
+        for (Signal& s : channels) s = resample(s, target_hz_);
       }
-      return s;
+      return channels;
     }
-    Signal s = load_rir(ref);
     double expected = 0.0;
-    if (!first_rate_hz_.compare_exchange_strong(expected, s.sample_rate_hz) && expected != s.sample_rate_hz) {
-      throw Error(ref.where + ": RIR '" + ref.id + "' is at " + format_double(s.sample_rate_hz) +
+    if (!first_rate_hz_.compare_exchange_strong(expected, rate_hz) && expected != rate_hz) {
+      throw Error(ref.where + ": RIR '" + ref.id + "' is at " + format_double(rate_hz) +
                   " Hz but other RIRs of the set are at " + format_double(expected) +
                   " Hz; pass --sample-rate to resample them to one rate");
     }
-    return s;
+    return channels;
   }
   double rate_hz() const { return target_hz_ > 0 ? target_hz_ : first_rate_hz_.load(); }
   void log_resampling(const std::string& set_path, size_t total) const {
@@ -123,20 +126,36 @@ std::vector<RirGains> measure_rir_set(const std::string& set_path, const Measure
   const std::vector<RirRef> refs = read_rir_refs(set_path, run_inputs());
   if (refs.empty()) throw Error(set_path + ": no RIRs listed");
   RateGuard guard(options.sample_rate_hz);
-  std::vector<RirGains> out(refs.size());
+  // One row per RIR, or per channel of a multichannel RIR ("<id>-ch<c>", as rir-metrics
+  // --all-channels names them): each microphone's response is one more measurement of the room.
+  std::vector<std::vector<RirGains>> per_ref(refs.size());
   Progress progress("measuring " + set_path, refs.size());
   parallel_for(refs.size(), options.num_threads, [&](size_t i) {
-    const Signal s = guard.load(refs[i]);
-    try {
-      out[i].id = refs[i].id;
-      out[i].gains_db = relative_gains_db(s, options.gain_method);
-    } catch (const Error& e) {
-      throw Error(refs[i].where + ": " + e.what());
+    const std::vector<Signal> channels = guard.load(refs[i]);
+    for (size_t c = 0; c < channels.size(); ++c) {
+      RirGains row;
+      row.id = channels.size() == 1 ? refs[i].id : refs[i].id + "-ch" + std::to_string(c);
+      try {
+        row.gains_db = relative_gains_db(channels[c], options.gain_method);
+      } catch (const Error& e) {
+        throw Error(refs[i].where + ": " + row.id + ": " + e.what());
+      }
+      per_ref[i].push_back(std::move(row));
     }
     progress.tick();
   });
   guard.log_resampling(set_path, refs.size());
   if (rate_hz) *rate_hz = guard.rate_hz();
+  std::vector<RirGains> out;
+  size_t multichannel = 0;
+  for (std::vector<RirGains>& rows : per_ref) {
+    multichannel += rows.size() > 1;
+    for (RirGains& r : rows) out.push_back(std::move(r));
+  }
+  if (multichannel > 0) {
+    log_info(set_path + ": " + std::to_string(multichannel) + " multichannel RIR(s): each channel measured as one RIR (" +
+             std::to_string(out.size()) + " in all)");
+  }
   return out;
 }
 

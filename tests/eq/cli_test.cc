@@ -166,3 +166,37 @@ TEST_F(RirEqCli, SilentRirsAndBadModelsLeaveNothingBehind) {
     EXPECT_EQ(entry.path().string().find(".tmp."), std::string::npos) << entry.path();
   }
 }
+
+// A microphone array's RIRs in the real set: each channel is one more measurement of the room.
+// `gains` lists every channel as "<id>-ch<c>" with the gains the same file's channel gets when it
+// is given alone (a mono file written from it), and `fit` on the array set makes the model that
+// the mono channel files make.
+TEST_F(RirEqCli, ArrayRirsAreMeasuredPerChannel) {
+  std::filesystem::create_directories(dir_.path("arr"));
+  std::filesystem::create_directories(dir_.path("mono"));
+  std::ofstream arr_scp(dir_.path("arr.scp")), mono_scp(dir_.path("mono.scp"));
+  for (int i = 0; i < 8; ++i) {
+    std::vector<std::vector<float>> channels;
+    for (int c = 0; c < 2; ++c) {
+      const Signal s = eqtest::decaying_noise_rir("a", 16000, 8000, 0.3 + 0.1 * c + 0.02 * i, 80 + 7 * c, -2.0 + c,
+                                                  100 + 10 * i + c);
+      const std::string id = "a" + std::to_string(i) + "-ch" + std::to_string(c);
+      write_wav(dir_.path("mono/" + id + ".wav"), s);
+      mono_scp << id << ' ' << dir_.path("mono/" + id + ".wav") << '\n';
+      channels.push_back(s.samples);
+    }
+    const std::string wav = dir_.path("arr/a" + std::to_string(i) + ".wav");
+    write_wav_channels(wav, channels, 16000);
+    arr_scp << "a" << i << ' ' << wav << '\n';
+  }
+  arr_scp.close();
+  mono_scp.close();
+  std::string out;
+  ASSERT_EQ(run("gains " + dir_.path("arr.scp") + " " + dir_.path("arr_gains.txt"), &out), 0) << out;
+  EXPECT_NE(out.find("8 multichannel RIR(s): each channel measured as one RIR (16 in all)"), std::string::npos) << out;
+  ASSERT_EQ(run("gains " + dir_.path("mono.scp") + " " + dir_.path("mono_gains.txt"), &out), 0) << out;
+  EXPECT_EQ(dir_.read("arr_gains.txt"), dir_.read("mono_gains.txt"));
+  ASSERT_EQ(run("fit " + dir_.path("arr.scp") + " " + dir_.path("arr.model"), &out), 0) << out;
+  ASSERT_EQ(run("fit " + dir_.path("mono.scp") + " " + dir_.path("mono.model"), &out), 0) << out;
+  EXPECT_EQ(dir_.read("arr.model"), dir_.read("mono.model"));
+}
