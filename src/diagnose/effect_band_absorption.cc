@@ -35,7 +35,7 @@ class BandAbsorptionEffect : public Effect {
   }
   std::vector<Threshold> thresholds() const override { return kBandThresholds.list(); }
   GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kT30PerBand); }
-  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kLatePeriodicity}; }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kTwoSlopes, ResidualView::kLatePeriodicity}; }
   bool within_band_refit() const override { return true; }
   std::vector<std::string> depends_on() const override { return {"room_modes", "air_absorption"}; }
 
