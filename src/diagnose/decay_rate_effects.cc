@@ -80,8 +80,16 @@ struct DecaySetup {
   std::map<std::string, BandValues> group_base;       // per room: the simulation's median rate per band
   BandValues base{};                                  // the same over the set
   std::vector<int> tested;
+  std::vector<int> low_tested;  // bands below twice the Schroeder frequency while room_modes is detected
   double t_crit = 0.0, temp = 20.0, c = 343.0;
 };
+
+// The t-test of band b's log rate ratios over one room's RIRs idx.
+OneSampleTest room_band_test(const std::vector<std::vector<double>>& x, const std::vector<size_t>& idx, int b) {
+  std::vector<double> v;
+  for (size_t i : idx) v.push_back(x[b][i]);
+  return t_test(v);
+}
 
 // Per room and tested band, the mean log rate ratio (the air fit's observations).
 std::vector<RateObservation> room_band_observations(const std::vector<std::vector<double>>& x, const DecaySetup& s) {
@@ -89,9 +97,7 @@ std::vector<RateObservation> room_band_observations(const std::vector<std::vecto
   for (const auto& [g, idx] : s.groups) {
     if (idx.size() < 3) continue;
     for (int b : s.tested) {
-      std::vector<double> v;
-      for (size_t i : idx) v.push_back(x[b][i]);
-      const OneSampleTest t = t_test(v);
+      const OneSampleTest t = room_band_test(x, idx, b);
       if (t.n < 3) continue;
       observations.push_back({b, t.mean, std::max(t.standard_error, 1e-4), s.group_base.at(g)[b]});
     }
@@ -177,6 +183,30 @@ BandTests test_bands(const std::vector<std::vector<double>>& x, const DecaySetup
   return out;
 }
 
+// The low bands while room_modes is detected: a modal field that is stronger or less damped than
+// the simulation's only slows their decay, and how much more slowly its modes decay is fitted by
+// room_modes' extension (decay_scale), which a lower low-band absorption would change alike (the
+// modes' damping is the walls' absorption: docs/results/diagnose_power.md). A decay FASTER than
+// simulated is beyond what the modes explain: band_absorption, one-sided, per room, at the same
+// effect size and t as the other bands (no geometry share: the room's other bands carry it).
+void test_low_bands_faster(const std::vector<std::vector<double>>& x, const DecaySetup& s, DecayRateSide* side) {
+  const double min_ratio = std::log(kBandThresholds.min_rate_ratio);
+  for (const auto& [g, idx] : s.groups) {
+    if (idx.size() < 3) continue;
+    for (int b : s.low_tested) {
+      const OneSampleTest t = room_band_test(x, idx, b);
+      if (!(t.mean > min_ratio && t.t > s.t_crit)) continue;
+      side->band_fires = true;
+      side->low_faster_bands.push_back(b);
+      if (t.mean > std::abs(side->worst_ratio)) {
+        side->worst_ratio = t.mean;
+        side->worst_band = b;
+        side->worst_room = g;
+      }
+    }
+  }
+}
+
 // The decisions of one side: the air fit against no change and one uniform factor, then the
 // per-band tests.
 void analyse_side(const std::vector<std::vector<double>>& x, const DecaySetup& s, DecayRateSide* side) {
@@ -195,6 +225,7 @@ void analyse_side(const std::vector<std::vector<double>>& x, const DecaySetup& s
   // With air explaining everything, the per-band refit is not needed; otherwise any band that
   // departs (raw, i.e. the refit also absorbs air) is band_absorption.
   side->band_fires = side->air_fires ? bands.residual_significant : bands.raw_significant;
+  test_low_bands_faster(x, s, side);
 }
 
 }  // namespace
@@ -221,7 +252,8 @@ DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_mode
   }
   a.low_bands_left_to_modes = room_modes_detected;
   for (int b : bands) {
-    if (!(a.low_bands_left_to_modes && kOctaveCentersHz[b] < 2.0 * a.schroeder_hz)) a.tested.push_back(b);
+    const bool low = a.low_bands_left_to_modes && kOctaveCentersHz[b] < 2.0 * a.schroeder_hz;
+    (low ? s.low_tested : a.tested).push_back(b);
   }
   // Rooms (absorption is a property of each room, air of the whole campaign).
   for (size_t i = 0; i < n; ++i) s.groups[room_group(obs[i].room)].push_back(i);
@@ -233,7 +265,7 @@ DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_mode
       s.group_base[g][b] = median_of(r);
     }
   }
-  a.t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, a.tested.size() * s.groups.size()),
+  a.t_crit = t_critical(kDecision.alpha / std::max<size_t>(1, (a.tested.size() + s.low_tested.size()) * s.groups.size()),
                         std::max<double>(2.0, n / std::max<double>(1.0, s.groups.size()) - 1.0));
   s.tested = a.tested;
   s.t_crit = a.t_crit;

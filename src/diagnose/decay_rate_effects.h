@@ -4,7 +4,8 @@
 // The cross-effect rule between them: the tool reports air only when one ISO 9613-1 curve explains
 // the whole mismatch (better than no change and better than one uniform rate factor, a room size
 // error); otherwise any band that departs is band_absorption, which then also absorbs air's share.
-// Bands below twice the Schroeder frequency are left to room_modes when it is detected.
+// Bands below twice the Schroeder frequency are left to room_modes when it is detected, except a
+// decay faster than simulated there (modes less damped than the simulation's only slow it).
 //
 // Also here: the band refit (per-room factors on the absorption exponent that match the measured
 // decay, by analysis by synthesis), which band_absorption's extension fits and which other effects
@@ -62,6 +63,9 @@ struct DecayRateSide {
   double worst_ratio = 0.0;   // the largest raw per-band, per-room mean log ratio beyond geometry's share
   std::string worst_room;
   BandValues air_curve{};     // the fitted air curve per tested band (NaN elsewhere)
+  // Bands below twice the Schroeder frequency (room_modes detected) that decay faster than
+  // simulated in some room (test_low_bands_faster): band_absorption's beyond the fitted modes.
+  std::vector<int> low_faster_bands;
   double uniform_chi2 = 0.0;  // chi-square of one rate factor for all bands
 };
 struct DecayRateAnalysis {
@@ -73,7 +77,8 @@ struct DecayRateAnalysis {
   bool low_bands_left_to_modes = false;
   DecayRateSide measured, null;
 };
-// `room_modes_detected`: the bands below twice the Schroeder frequency are left out.
+// `room_modes_detected`: the bands below twice the Schroeder frequency are tested only for a decay
+// faster than simulated (DecayRateSide::low_faster_bands).
 DecayRateAnalysis analyse_decay_rates(const SetObservations& obs, bool room_modes_detected);
 
 // Per-band factors of the band_absorption component for the RIRs idx (one room): median measured

@@ -339,6 +339,8 @@ Finding unexplained_finding(const UnexplainedCheck& check) {
                check.evidence;
   const UnexplainedThresholds& t = kUnexplainedThresholds;
   f.thresholds = {{"min_bend_db", t.min_bend_db, "decay shape: the bend of a band's decay curve beyond the model's"},
+                  {"min_early_late_log_ratio", t.min_early_late_log_ratio,
+                   "two slopes: ln of how much faster the early decay (EDT) is re the model's than the late (T30)"},
                   {"min_periodicity", t.min_periodicity, "late periodicity: envelope autocorrelation beyond the model's"},
                   {"min_pattern_loss_db", t.min_pattern_loss_db,
                    "early pattern: reflections less prominent where the model has them than where the measurement does"}};

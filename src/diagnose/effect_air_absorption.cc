@@ -36,7 +36,7 @@ class AirAbsorptionEffect : public Effect {
   }
   std::vector<Threshold> thresholds() const override { return kAirThresholds.list(); }
   GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kT30PerBand); }
-  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kLatePeriodicity}; }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kTwoSlopes, ResidualView::kLatePeriodicity}; }
   bool within_band_refit() const override { return true; }
   std::vector<std::string> depends_on() const override { return {"room_modes"}; }
 

@@ -7,13 +7,18 @@
 //              detected, the residual after the air curve is tested; otherwise the raw ratio, and
 //              the refit then also absorbs air's share (decay_rate_effects.h).
 //   Depends    room_modes: bands below twice the Schroeder frequency are left to it when it is
-//              detected; air_absorption: its curve is removed first when detected (decision and
-//              fit).
+//              detected, unless they decay faster than simulated (one-sided: less damped modes
+//              only slow the decay, and the modes' fitted decay_scale explains a slower one; a
+//              faster one is absorption beyond the fitted modes, and is refitted here);
+//              air_absorption: its curve is removed first when detected (decision and fit).
 //   Extension  sim "band_absorption" (src/sim/room_refits.h), per room: factors on the absorption
 //              exponent -ln(1 - a) (Eyring: the decay rate is proportional to it) from the median
 //              measured / simulated decay rate, air's share removed, then refined by analysis by
 //              synthesis (decay_rate_effects.h: refine_band_scales).
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "diagnose/decay_rate_effects.h"
 #include "diagnose/decision_rules.h"
@@ -25,6 +30,16 @@
 namespace tsrir::diagnose {
 namespace {
 
+// ", faster: 125 Hz, 250 Hz" (the low bands that decay faster than simulated), or nothing.
+std::string low_bands_note(const std::vector<int>& bands) {
+  std::string out;
+  for (int b : bands) {
+    const std::string name = band_name(b);
+    if (out.find(name) == std::string::npos) out += (out.empty() ? " (faster: " : ", ") + name;
+  }
+  return out.empty() ? out : out + ")";
+}
+
 class BandAbsorptionEffect : public Effect {
  public:
   std::string name() const override { return "band_absorption"; }
@@ -35,7 +50,7 @@ class BandAbsorptionEffect : public Effect {
   }
   std::vector<Threshold> thresholds() const override { return kBandThresholds.list(); }
   GainMetricId gain_metric() const override { return GainMetricId::own(OwnMetric::kT30PerBand); }
-  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kLatePeriodicity}; }
+  std::vector<ResidualView> residual_views() const override { return {ResidualView::kDecayShape, ResidualView::kTwoSlopes, ResidualView::kLatePeriodicity}; }
   bool within_band_refit() const override { return true; }
   std::vector<std::string> depends_on() const override { return {"room_modes", "air_absorption"}; }
 
@@ -61,7 +76,9 @@ class BandAbsorptionEffect : public Effect {
                     ", beyond a uniform change of up to " + num(100.0 * (1.0 / (1.0 - kBandThresholds.max_size_error) - 1.0), 2) +
                     "% for a room-size error" +
                     (ctx.detected("air_absorption") ? ", after the air-absorption fit" : "") + ")" +
-                    (a.low_bands_left_to_modes ? "; bands below " + num(2.0 * a.schroeder_hz) + " Hz are left to room_modes"
+                    (a.low_bands_left_to_modes ? "; bands below " + num(2.0 * a.schroeder_hz) +
+                                                     " Hz are left to room_modes unless they decay faster than simulated" +
+                                                     low_bands_note(a.measured.low_faster_bands)
                                                : "") +
                     "; seed-vs-seed largest " + num(100.0 * std::expm1(wrn), 2) + "%.";
     // The report's band-level plot: level re broadband, measured - simulated, every band.
@@ -87,13 +104,20 @@ class BandAbsorptionEffect : public Effect {
     const std::string air_spec = air_fit.scale > 0.0 ? "+air:humidity=" + spec_num(air_fit.humidity_percent) +
                                                            ",scale=" + spec_num(air_fit.scale)
                                                      : std::string();
-    const double keep_below = ctx.detected("room_modes") ? 2.0 * median_of(obs.each([](const RirObservation& r) { return r.schroeder_hz; })) : 0.0;
+    const bool modes = ctx.detected("room_modes");
+    const double keep_below = modes ? 2.0 * median_of(obs.each([](const RirObservation& r) { return r.schroeder_hz; })) : 0.0;
+    // The low bands that decay faster than the modes can explain (decided on the fit half) take
+    // their median rate ratio; refine_band_scales leaves them as they are (its renders have no modes).
+    const std::vector<int> low_faster =
+        modes ? analyse_decay_rates(obs.subset(ctx.fit_index()), true).measured.low_faster_bands : std::vector<int>{};
     Extension ext;
     finding->parameters.clear();
     for (const auto& [room, idx] : ctx.fit_by_room()) {
+      sim::BandValues start = band_absorption_scales(obs, idx, air_fit, keep_below);
+      const sim::BandValues all_bands = band_absorption_scales(obs, idx, air_fit, 0.0);
+      for (int b : low_faster) start[b] = std::max(1.0, all_bands[b]);
       const sim::BandValues scale =
-          refine_band_scales(obs, idx, band_absorption_scales(obs, idx, air_fit, keep_below),
-                             ctx.options().baseline_model + air_spec, ctx.options(), 3, keep_below);
+          refine_band_scales(obs, idx, start, ctx.options().baseline_model + air_spec, ctx.options(), 3, keep_below);
       for (int b = 0; b < kNumOctaveBands; ++b) {
         finding->parameters.push_back(
             {(ctx.fit_by_room().size() > 1 ? room + "." : std::string()) + sim::band_absorption_key(b), scale[b]});

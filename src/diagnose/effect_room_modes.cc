@@ -15,7 +15,8 @@
 //   Extension  sim "modes" (src/sim/room_modes.h): the modal sum crossed over with the geometric
 //              part below the Schroeder frequency; decay_scale = median measured / simulated
 //              decay time (T30, T20 where T30 is not measurable) of the bands below twice the
-//              Schroeder frequency, level_db from one trial render of
+//              Schroeder frequency, at least 1 (a faster low band is band_absorption's), level_db
+//              from one trial render of
 //              the fit RIRs (energy share below the Schroeder frequency, measured / trial).
 #include <algorithm>
 #include <cmath>
@@ -81,7 +82,10 @@ class RoomModesEffect : public Effect {
         ratio.push_back(obs[i].sim_a.decay_rate_per_s[b] / obs[i].meas.decay_rate_per_s[b]);
       }
     }
-    const double decay_scale = std::clamp(std::isfinite(median_of(ratio)) ? median_of(ratio) : 1.0, 0.5, 4.0);
+    // At least 1: modes stronger or less damped than the simulation's only slow the decay; a low
+    // band decaying faster than simulated is band_absorption's (decay_rate_effects.h), and a
+    // decay_scale below 1 on top of its refit would count that change twice.
+    const double decay_scale = std::clamp(std::isfinite(median_of(ratio)) ? median_of(ratio) : 1.0, 1.0, 4.0);
     // Level: one trial render of the fit part with the modes at 0 dB.
     const std::string trial = options.baseline_model + "+modes:decay_scale=" + spec_num(decay_scale);
     const std::vector<size_t>& fit_index = ctx.fit_index();

@@ -16,11 +16,13 @@ namespace {
 constexpr std::array<int, 4> kShapeBands = {3, 4, 5, 6};      // 500 Hz .. 4 kHz
 constexpr std::array<double, 8> kShapeTimesMs = {50.0, 100.0, 150.0, 200.0, 300.0, 400.0, 500.0, 600.0};
 
-// The three views of one response (measured or rendered), from its onset.
+// The views of one response (measured or rendered), from its onset.
 struct Views {
   std::array<std::array<double, kShapeTimesMs.size()>, kShapeBands.size()> edc_db{};  // per band, at kShapeTimesMs (NaN past the active part)
   double periodicity = NAN, periodicity_lag_ms = NAN;
   std::vector<double> early;  // energy per 0.5 ms bin, 3-40 ms after the onset
+  // Per shape band: the early (EDT) and late (T30, else T20) decay rates, 1/s (NaN: not measured).
+  std::array<double, kShapeBands.size()> early_rate{}, late_rate{};
 };
 
 double db(double x) { return x > 0.0 ? 10.0 * std::log10(x) : NAN; }
@@ -134,6 +136,15 @@ Views views_of(const Signal& s, const RirFeatures& f) {
   return v;
 }
 
+// The two-slopes view's decay rates, from the feature pass.
+Views with_rates(Views v, const RirFeatures& f) {
+  for (size_t k = 0; k < kShapeBands.size(); ++k) {
+    v.early_rate[k] = f.early_decay_rate_per_s[kShapeBands[k]];
+    v.late_rate[k] = f.decay_rate_per_s[kShapeBands[k]];
+  }
+  return v;
+}
+
 // The bend of band k's decay departure D(t) = EDC_x(t) - EDC_y(t), dB: how far D sags below its
 // chord from 50 ms to the last time both are measured (the largest sag; negative for a bulge). A
 // wrong decay rate makes D a straight line (no bend); a double slope (faster first, slower later)
@@ -180,6 +191,30 @@ std::vector<size_t> bands_without_slow_neighbour(const SetObservations& obs) {
   return kept;
 }
 
+// Band k's early-vs-late departure: ln(x's early rate / y's) - ln(x's late rate / y's). A wrong
+// decay rate (an absorption error, with or without its refit) changes both alike: ~0. A double
+// slope that a single-exponential model is fitted to (band_absorption refits the late rate) leaves
+// x's early decay faster than y's: positive, ln 2 where the first 10 dB fall twice as fast.
+double early_late_departure(const Views& x, const Views& y, size_t k) {
+  const double xe = x.early_rate[k], ye = y.early_rate[k], xl = x.late_rate[k], yl = y.late_rate[k];
+  if (!(xe > 0.0 && ye > 0.0 && xl > 0.0 && yl > 0.0)) return NAN;
+  return std::log(xe / ye) - std::log(xl / yl);
+}
+
+// One cell per band of `bands`: f(measured, model A) per RIR, and the null f(model B, model A).
+template <typename F>
+void band_cells(const std::vector<Views>& m, const std::vector<Views>& a, const std::vector<Views>& b,
+                const std::vector<size_t>& bands, F f, std::vector<std::vector<double>>* d, std::vector<std::vector<double>>* e) {
+  d->assign(bands.size(), {});
+  e->assign(bands.size(), {});
+  for (size_t i = 0; i < m.size(); ++i) {
+    for (size_t c = 0; c < bands.size(); ++c) {
+      (*d)[c].push_back(f(m[i], a[i], bands[c]));
+      (*e)[c].push_back(f(b[i], a[i], bands[c]));
+    }
+  }
+}
+
 struct ViewDecision {
   bool departs = false;
   double worst_ratio = 0.0;  // |mean| / threshold of the cell that departs most
@@ -215,6 +250,7 @@ ViewDecision decide_cells(const std::vector<std::vector<double>>& d, const std::
 std::string residual_view_name(ResidualView view) {
   switch (view) {
     case ResidualView::kDecayShape: return "decay shape";
+    case ResidualView::kTwoSlopes: return "two slopes";
     case ResidualView::kLatePeriodicity: return "late periodicity";
     case ResidualView::kEarlyPattern: return "early pattern";
   }
@@ -230,21 +266,17 @@ UnexplainedCheck check_unexplained(const SetObservations& obs, const std::map<st
     const std::string& spec = model_by_room.at(room_group(r.room));
     const Signal sa = render_rir(spec, r.room, options.sample_rate_hz, r.measured.size(), options.seed);
     const Signal sb = render_rir(spec, r.room, options.sample_rate_hz, r.measured.size(), options.seed + 1);
-    m[i] = views_of(r.measured, r.meas);
-    a[i] = views_of(sa, r.features_of(sa));
-    b[i] = views_of(sb, r.features_of(sb));
+    const RirFeatures fa = r.features_of(sa), fb = r.features_of(sb);
+    m[i] = with_rates(views_of(r.measured, r.meas), r.meas);
+    a[i] = with_rates(views_of(sa, fa), fa);
+    b[i] = with_rates(views_of(sb, fb), fb);
   });
   UnexplainedCheck out;
   const UnexplainedThresholds& thr = kUnexplainedThresholds;
   // Decay shape: one cell per band whose octave filter does not mix in a much slower neighbour.
   const std::vector<size_t> shape_bands = bands_without_slow_neighbour(obs);
-  std::vector<std::vector<double>> d(shape_bands.size()), e(shape_bands.size());
-  for (size_t i = 0; i < n; ++i) {
-    for (size_t c = 0; c < shape_bands.size(); ++c) {
-      d[c].push_back(bend_departure(m[i], a[i], shape_bands[c]));
-      e[c].push_back(bend_departure(b[i], a[i], shape_bands[c]));
-    }
-  }
+  std::vector<std::vector<double>> d, e;
+  band_cells(m, a, b, shape_bands, bend_departure, &d, &e);
   // One-sided: the measurement's decay bends more than the model's (a double slope, a floor the
   // model lacks). The other way round is the model's own octave leakage (a fast band next to a slow
   // one measures convex in the simulation), which catalog sets with a per-band absorption error show.
@@ -252,6 +284,13 @@ UnexplainedCheck check_unexplained(const SetObservations& obs, const std::map<st
   const size_t cell = static_cast<size_t>(shape.where.front().second);
   const size_t band = shape_bands.empty() ? 0 : shape_bands[cell];
   const double bend = shape_bands.empty() ? NAN : mean_of(d[cell]);
+  // Early vs late decay, the same bands: the measurement's early decay faster than the model's
+  // beyond what its late decay is (a double slope the model's single exponential was refitted to).
+  std::vector<std::vector<double>> sd, se;
+  band_cells(m, a, b, shape_bands, early_late_departure, &sd, &se);
+  const ViewDecision slopes = decide_cells(sd, se, thr.min_early_late_log_ratio, +1);
+  const size_t slope_band = shape_bands.empty() ? 0 : shape_bands[static_cast<size_t>(slopes.where.front().second)];
+  const double slope_log_ratio = shape_bands.empty() ? NAN : mean_of(sd[static_cast<size_t>(slopes.where.front().second)]);
   // Late periodicity: one cell.
   std::vector<std::vector<double>> pd(1), pe(1), lag(1);
   for (size_t i = 0; i < n; ++i) {
@@ -275,6 +314,9 @@ UnexplainedCheck check_unexplained(const SetObservations& obs, const std::map<st
   out.evidence = "decay shape: the measured energy decay curve at " + band_label + " sags " + num(bend) +
                  " dB below the straight line a decay-rate error would give, re the model's (50-600 ms after the onset; "
                  "threshold " + num(thr.min_bend_db) + " dB)" + (shape.departs ? " DEPARTS" : "") +
+                 "; two slopes: at " + band_name(kShapeBands[slope_band]) + " the measured early decay (EDT) is " +
+                 num(std::exp(slope_log_ratio)) + "x faster re the model's than its late decay (T30) is (threshold " +
+                 num(std::exp(thr.min_early_late_log_ratio)) + "x)" + (slopes.departs ? " DEPARTS" : "") +
                  "; late periodicity: the 1-6 kHz envelope (80-600 ms) repeats at r = " + num(mean_of(pd[0])) +
                  " above the model's (median lag " + num(median_of(lag[0])) + " ms; threshold " + num(thr.min_periodicity) +
                  ")" + (periodic.departs ? " DEPARTS" : "") + "; early pattern: the measured 3-40 ms envelope is " + num(mean_of(loss_m)) +
@@ -282,15 +324,18 @@ UnexplainedCheck check_unexplained(const SetObservations& obs, const std::map<st
                  num(mean_of(loss_b)) + " dB; threshold " + num(thr.min_pattern_loss_db) + " dB)" +
                  (early.departs ? " DEPARTS" : "") + ".";
   if (shape.departs) out.departing.push_back(ResidualView::kDecayShape);
+  if (slopes.departs) out.departing.push_back(ResidualView::kTwoSlopes);
   if (periodic.departs) out.departing.push_back(ResidualView::kLatePeriodicity);
   if (early.departs) out.departing.push_back(ResidualView::kEarlyPattern);
   // Each view's largest departure, departing or not (where and how far).
   out.parameters = {{"decay_bend_db", bend},
                     {"decay_bend_band_hz", kOctaveCentersHz[kShapeBands[band]]},
+                    {"early_late_rate_ratio", std::exp(slope_log_ratio)},
+                    {"early_late_band_hz", kOctaveCentersHz[kShapeBands[slope_band]]},
                     {"periodicity", mean_of(pd[0])},
                     {"periodicity_lag_ms", median_of(lag[0])},
                     {"early_pattern_loss_db", mean_of(ed[0])}};
-  out.statistic = std::max({shape.worst_ratio, periodic.worst_ratio, early.worst_ratio});
+  out.statistic = std::max({shape.worst_ratio, slopes.worst_ratio, periodic.worst_ratio, early.worst_ratio});
   return out;
 }
 

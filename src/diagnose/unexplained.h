@@ -4,13 +4,19 @@
 // move a catalog effect's statistic (a double slope slows the measured T30, so band_absorption
 // fires), and a wrong name would send a user to fix the wrong thing. So after the detected effects'
 // extensions are fitted, the measurements of the fit half are compared with the extended model's
-// renders in three views that no catalog extension changes as such:
+// renders in four views that no catalog extension changes as such:
 //   decay shape       per octave band (500 Hz-4 kHz), how the energy decay curve bends: the
 //                     departure D(t) (measured - model, dB) of the energy decay curve at 50-600 ms
 //                     after the onset, and how far it sags below its chord (a wrong decay rate makes
 //                     D a straight line; a double slope or a late floor make it sag); a band next
 //                     to a much more slowly decaying one is left out (its filter's leakage alone
 //                     makes a double slope);
+//   two slopes        the same bands, whether the early decay (EDT, the first 10 dB) departs from the
+//                     model's more than the late decay (T30) does: ln(EDT rate ratio) - ln(T30 rate
+//                     ratio), measured re the model. A wrong absorption changes both rates alike; a
+//                     coupled volume's double slope leaves the early decay fast where the model's
+//                     single exponential was refitted to the slow late decay (band_absorption),
+//                     also when the sag from 50 ms on stays under its threshold;
 //   late periodicity  the largest autocorrelation, at lags of 10-60 ms, of the 1-6 kHz energy
 //                     envelope between 80 and 600 ms after the onset, detrended (flutter echo);
 //   early pattern     whether the measured reflections arrive where the model's do: the broadband
@@ -33,12 +39,13 @@
 
 namespace tsrir::diagnose {
 
-enum class ResidualView { kDecayShape, kLatePeriodicity, kEarlyPattern };
+enum class ResidualView { kDecayShape, kTwoSlopes, kLatePeriodicity, kEarlyPattern };
 std::string residual_view_name(ResidualView view);  // "decay shape", ...
 
 // Set above what the catalog's own cases leave after their extensions (docs/results/diagnose_power.md).
 struct UnexplainedThresholds {
   double min_bend_db = 4.0;        // decay shape, dB
+  double min_early_late_log_ratio = 0.25;  // two slopes, ln of the early rate's ratio over the late rate's (1.28x)
   double min_periodicity = 0.15;   // late periodicity, autocorrelation
   double min_pattern_loss_db = 1.5;  // early pattern, dB
 };
@@ -51,7 +58,7 @@ struct UnexplainedCheck {
   std::vector<std::pair<std::string, double>> parameters;  // where and how far
 };
 
-// The three views on `fit_obs` against renders of `model_by_room` (room_group -> model spec) with
+// The four views on `fit_obs` against renders of `model_by_room` (room_group -> model spec) with
 // seeds A and B.
 UnexplainedCheck check_unexplained(const SetObservations& fit_obs, const std::map<std::string, std::string>& model_by_room,
                                    const DiagnoseOptions& options);

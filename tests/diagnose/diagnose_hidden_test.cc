@@ -230,6 +230,11 @@ testdata::HiddenOptions dense_modes(double decay_factor = 0.0) {
   if (decay_factor > 0.0) o.fixed["modal_decay_factor"] = decay_factor;
   return o;
 }
+testdata::HiddenOptions dense_modes_low_absorption(double factor) {
+  testdata::HiddenOptions o = dense_modes();
+  for (int b = 0; b < kNumOctaveBands; ++b) o.fixed["absorption_factor_" + std::to_string(b)] = b <= 2 ? factor : 1.0;
+  return o;
+}
 testdata::HiddenOptions silent_tail(double seconds) {
   testdata::HiddenOptions o;
   o.silent_tail_s = seconds;
@@ -266,7 +271,11 @@ INSTANTIATE_TEST_SUITE_P(
                       // damping, and with the modes decaying 2.5x more slowly than their walls make
                       // them (the low bands' decay slows too: room_modes, not band_absorption).
                       Case{"dense_modes", {"room_modes"}, 16, dense_modes()},
-                      Case{"dense_modes_slow_decay", {"room_modes"}, 17, dense_modes(2.5)}),
+                      Case{"dense_modes_slow_decay", {"room_modes"}, 17, dense_modes(2.5)},
+                      // The low bands (62.5-250 Hz, below twice the Schroeder frequency) absorbing
+                      // twice as much under a dense modal field: faster than the modes explain.
+                      Case{"dense_modes_and_low_band_absorption", {"room_modes", "band_absorption"}, 18,
+                           dense_modes_low_absorption(2.0)}),
     case_name);
 
 // Look-alikes: nothing of the catalog hidden (or one effect whose look-alike must not be
