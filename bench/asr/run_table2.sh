@@ -55,7 +55,7 @@ snrs_of() { case $1 in paper) echo 1..2 ;; reverb) echo 15..25 ;; *) die "unknow
 for a in $arms; do snrs_of "$a" >/dev/null; done
 demo_rirs=$recipe/demo/data/rirs
 rirs=$out/rirs
-machine="$(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+machine="$(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 start_time=$(date -u '+%Y-%m-%d %H:%M UTC'); start_load=$(cut -d' ' -f1-3 /proc/loadavg); t0=$SECONDS
 ( while sleep 60; do cut -d' ' -f1 /proc/loadavg; done ) >"$out/load.$$.txt" &
 sampler=$!
