@@ -22,13 +22,13 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
 import tsrir
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import rooms  # noqa: E402
 from rooms import fmt, peak  # noqa: E402
 
 FS = 16000
@@ -52,10 +52,7 @@ def main():
     driver = sys.argv[1]
     win_ms = float(sys.argv[2]) if len(sys.argv) > 2 else 50.0
     n = int(win_ms * FS / 1000)
-    with open("/proc/loadavg") as f:
-        load = " ".join(f.read().split()[:3])
-    print("machine: %d cores, %s UTC, load average %s (accuracy does not depend on it)" % (
-        os.cpu_count(), time.strftime("%Y-%m-%d %H:%M", time.gmtime()), load))
+    print(rooms.machine_line())
     print("## 8-mic circular array (r = 5 cm) in the reference room: rir-simulate --model=ism vs RIR-Generator, %g ms"
           % win_ms)
     print("| pattern, axis azimuth | direct time diff, worst (samples) | TDOA to mic 0 diff, worst (samples) | "

@@ -17,7 +17,6 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 import scipy.io.wavfile
@@ -67,10 +66,7 @@ def main():
     nref = int(sys.argv[3]) if len(sys.argv) > 3 else 20
     win_ms = float(sys.argv[4]) if len(sys.argv) > 4 else 100.0
     nsamp = int(win_ms * FS / 1000)
-    with open("/proc/loadavg") as f:
-        load = " ".join(f.read().split()[:3])
-    print("machine: %d cores, %s UTC, load average %s (accuracy does not depend on it)" % (
-        os.cpu_count(), time.strftime("%Y-%m-%d %H:%M", time.gmtime()), load))
+    print(rooms.machine_line())
     print("## Image sources: rir-simulate --model=ism vs RIR-Generator, first %d arrivals isolated by > %g ms, %g ms window"
           % (nref, ISO_MS, win_ms))
     print("| room | beta | arrivals compared | time diff, mean / worst (samples) | amplitude ratio tsrir/RIR-Gen, mean / worst | "

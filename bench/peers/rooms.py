@@ -12,6 +12,7 @@ but written out as absorption= so that pyroomacoustics and RIR-Generator get the
 import math
 import os
 import sys
+import time
 
 C = 343.0
 
@@ -66,6 +67,14 @@ def peak(h, pos):
     den = a - 2 * b + c
     off = 0.5 * (a - c) / den if den != 0 else 0.0
     return i + off, h[i] - 0.25 * (h[i - 1] - h[i + 1]) * off
+
+
+def machine_line():
+    """The first line of an accuracy table: cores, date and load (accuracy does not depend on it)."""
+    with open("/proc/loadavg") as f:
+        load = " ".join(f.read().split()[:3])
+    return "machine: %d cores, %s UTC, load average %s (accuracy does not depend on it)" % (
+        os.cpu_count(), time.strftime("%Y-%m-%d %H:%M", time.gmtime()), load)
 
 
 def fmt(v):
