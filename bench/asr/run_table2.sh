@@ -19,7 +19,10 @@
 #      run-level means with 95 % intervals, each set against GAS over runs, the controls' dose chains).
 #
 # Usage: bench/asr/run_table2.sh [--arms "paper reverb"] [--seeds "0 1 2 3 4"] [--sets "..."]
-#          [--jobs 2] [--out DIR] [--gan-steps 2000] [--train-copies 3]
+#          [--jobs 2] [--out DIR] [--gan-steps 2000] [--train-copies 3] [--import-translator NAME=DIR]
+# --import-translator paper=DIR (or default=DIR) uses a model trained elsewhere with this script's
+# command, e.g. on a GPU by bench/asr/table2_translator_gpu.sh, after checking that its settings and
+# step count are the ones this script would train (bench/asr/translator_matches.py).
 # e.g. the instrument check alone: bench/asr/run_table2.sh --arms reverb --sets "real ctl_t60x0.5 ctl_t60x0.33"
 # Default out: egs/librispeech_farfield/demo/table2. A piece stopped by Ctrl-C resumes where it
 # stopped (a model in training resumes from its last epoch).
@@ -34,11 +37,12 @@ jobs=2
 out=$recipe/demo/table2
 gan_steps=2000
 train_copies=3
+imports=()
 cmdline="$0 $*"
 while [ $# -gt 0 ]; do
   case $1 in
     --sets) sets=$2 ;; --arms) arms=$2 ;; --seeds) seeds=$2 ;; --jobs) jobs=$2 ;; --out) out=$2 ;;
-    --gan-steps) gan_steps=$2 ;; --train-copies) train_copies=$2 ;;
+    --gan-steps) gan_steps=$2 ;; --train-copies) train_copies=$2 ;; --import-translator) imports+=("$2") ;;
     *) echo "$0: unknown option $1" >&2; exit 1 ;;
   esac
   shift 2
@@ -94,10 +98,20 @@ make_control() {  # <set>
 }
 
 # ---- 3. trained translators and their G sets ----
-train_translator() {  # <name> <extra options>
-  local name=$1 extra=$2 dir=$out/gan/$1 sig
+translator_options() {  # <name>: the options beside width, batch and steps
+  case $1 in
+    default) echo "" ;;
+    paper) echo "--config=$root/conf/ts-rirgan-paper.conf" ;;
+    *) die "unknown translator '$1' (default | paper)" ;;
+  esac
+}
+translator_sig() {  # <name>: what the model is made from; a change trains it anew
   # The program's --help lists its defaults: a new default translator is trained anew.
-  sig="$extra steps=$gan_steps $(ts-rirgan-train --help 2>&1 | md5sum) $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
+  echo "$(translator_options "$1") steps=$gan_steps $(ts-rirgan-train --help 2>&1 | md5sum) $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
+}
+train_translator() {  # <name>
+  local name=$1 dir=$out/gan/$1 sig extra
+  extra=$(translator_options "$name"); sig=$(translator_sig "$name")
   done_with "$dir.done" "$sig" && return 0
   local resume=()
   [ -f "$dir/checkpoint.pt" ] && done_with "$dir.sig" "$sig" && resume=(--resume)
@@ -108,6 +122,19 @@ train_translator() {  # <name> <extra options>
     --real="$demo_rirs/real_train/rir_list" --synthetic="$demo_rirs/gas_train/rir_list" ${resume[@]+"${resume[@]}"} "$dir" \
     2>"$out/log/gan_$name.log" || { tail "$out/log/gan_$name.log" >&2; die "ts-rirgan-train ($name) failed"; }
   mark "$dir.done" "$sig"
+}
+import_translator() {  # <name>=<model dir>: a model trained with train_translator's command elsewhere
+  local name=${1%%=*} from=${1#*=} dir sig extra
+  dir=$out/gan/$name; extra=$(translator_options "$name"); sig=$(translator_sig "$name")
+  [ -f "$from/settings.txt" ] && [ -f "$from/checkpoint.pt" ] && [ -f "$from/loss_log.csv" ] ||
+    die "--import-translator $1: $from has no settings.txt, checkpoint.pt and loss_log.csv"
+  # shellcheck disable=SC2086
+  python3 "$root/bench/asr/translator_matches.py" "$from" --program="$(command -v ts-rirgan-train)" --steps="$gan_steps" $extra --width=16 --batch-size=4 --seed=0 ||
+    die "--import-translator $1: not the model this script trains (above)"
+  mkdir -p "$out/gan"; rm -rf "$dir.tmp"; cp -r "$from" "$dir.tmp"; rm -rf "$dir"; mv "$dir.tmp" "$dir"
+  mark "$dir.sig" "$sig"; mark "$dir.done" "$sig"
+  log "imported the $name translator from $from"
+  echo "- imported the $name translator from \`$from\`: $(grep -h 'command\|machine\|exit' "$from/trained_on.md" 2>/dev/null | tr '\n' ' ')" >>"$out/pieces.md"
 }
 # A set made anew: the far-field data and models made from its old content go (run_proxy.sh's
 # markers follow the list's paths, which stay the same), so that every arm trains on the new one.
@@ -138,6 +165,8 @@ make_g_sets() {  # <suffix> <model-dir>: gas_gsr<suffix>, gas_eq_gsr<suffix>, ga
 prepare_rirs() {
   mkdir -p "$rirs" "$out/log"
   prepare_demo
+  local i
+  for i in ${imports[@]+"${imports[@]}"}; do import_translator "$i"; done
   # The demo's sets, linked; the demo's small translator (width 8, 300 steps) is kept as a labelled
   # row. When the demo made one anew (its .done changed), what was trained on the old one goes.
   local pair s from
@@ -153,11 +182,11 @@ prepare_rirs() {
   done
   for s in $sets; do case $s in ctl_*) make_control "$s" ;; esac; done
   if [[ " $sets " == *" gas_gsr "* || " $sets " == *" gas_eq_gsr "* || " $sets " == *" gas_gsr_eq "* ]]; then
-    train_translator default ""
+    train_translator default
     make_g_sets "" "$out/gan/default"
   fi
   if [[ " $sets " == *" gas_gsrp"* || " $sets " == *" gas_eq_gsrp "* ]]; then
-    train_translator paper "--config=$root/conf/ts-rirgan-paper.conf"
+    train_translator paper
     make_g_sets p "$out/gan/paper"
   fi
 }

@@ -23,7 +23,9 @@
 # then runs on the CPU; GAN_WIDTH / GAN_BATCH / GAN_STEPS shrink the timed run for it); DEBS,
 # TORCH_PREFIX, CUDA_ARCH, PYTHON, THREADS override what is found, BUILD the build directory (default: a
 # fresh one under $TMPDIR). SKIP_BUILD=1 with BUILD=<an existing build> re-runs only the
-# measurements.
+# measurements. ONLY_BUILD=1 stops after building TARGETS (default: the four LibTorch programs), for
+# scripts that run their own work on the GPU (bench/asr/table2_translator_gpu.sh): the programs are
+# then in $TMPDIR/tsrir_cuda_check/build/bin and the libraries they open in .../deps.
 # Usage (repository root): bench/gan/cuda_check.sh [OUT_DIR]    (must finish in < 8 min on 16 cores)
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -131,8 +133,10 @@ grep -E "Found Torch|Caffe2: CUDA|CUDA detected|without pkg-config|Found Boost|F
   | sed 's/^/    /' | tee -a "$summary" >&2
 keep_going=(-k)
 command -v ninja >/dev/null && keep_going=(-k 0)
-step build 300 cmake --build "$build" -j "$cores" --target ts-rirgan-train gas-to-real asr-train asr-decode \
+# shellcheck disable=SC2086  # TARGETS is a list of names
+step build 300 cmake --build "$build" -j "$cores" --target ${TARGETS:-ts-rirgan-train gas-to-real asr-train asr-decode} \
   -- "${keep_going[@]}" || { note "build failed: see build.log"; exit 1; }
+[[ ${ONLY_BUILD:-0} == 1 ]] && { note "- built (ONLY_BUILD=1) in $(elapsed) s"; exit 0; }
 # The tests separately: a failure there does not stop the runs.
 step build_tests 150 cmake --build "$build" -j "$cores" --target torch_compat_2x_test gan_networks_test \
   -- "${keep_going[@]}"
