@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "util/commented_lines.h"
 #include "util/error.h"
 #include "util/program.h"
 #include "util/strings.h"
@@ -127,16 +128,11 @@ bool KaldiOptionParser::given(const std::string& name) const {
 void KaldiOptionParser::read_config_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error("Cannot open config file: " + path);
+  CommentedLines lines(in);
   std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    size_t hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    line = trim(line);
-    if (line.empty()) continue;
+  while (lines.next(&line)) {
     if (!starts_with(line, "--"))
-      throw Error(located(path, line_number, "does not look like a line from a Kaldi config file: should be of the form --x=y"));
+      throw Error(located(path, lines.lines_read(), "does not look like a line from a Kaldi config file: should be of the form --x=y"));
     std::string key, value;
     bool has_equal_sign = false;
     split_long_arg(line, &key, &value, &has_equal_sign);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "io/atomic_output.h"
+#include "util/commented_lines.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -112,7 +113,7 @@ namespace {
 // Reads the keyword lines one at a time, skipping comments and blanks.
 class ModelLines {
  public:
-  ModelLines(const std::string& text, const std::string& source) : in_(text), source_(source) {}
+  ModelLines(const std::string& text, const std::string& source) : in_(text), lines_(in_), source_(source) {}
 
   // The fields of the next line, whose first field must be `key`.
   std::vector<std::string> expect(const std::string& key, size_t num_values) {
@@ -145,18 +146,15 @@ class ModelLines {
 
  private:
   bool next() {
-    std::string raw;
-    while (std::getline(in_, raw)) {
-      ++line_;
-      const size_t hash = raw.find('#');
-      if (hash != std::string::npos) raw.erase(hash);
-      fields_ = split_whitespace(raw);
-      if (!fields_.empty()) return true;
-    }
-    ++line_;
-    return false;
+    std::string line;
+    const bool more = lines_.next(&line);
+    // At the end, errors name the line after the last one.
+    line_ = lines_.lines_read() + (more ? 0 : 1);
+    fields_ = split_whitespace(line);
+    return more;
   }
   std::istringstream in_;
+  CommentedLines lines_;
   std::string source_;
   int line_ = 0;
   std::vector<std::string> fields_;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "io/rxfile.h"
+#include "util/commented_lines.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -76,16 +77,12 @@ std::vector<Vec3> circular_array(const std::vector<std::string>& fields, const s
 
 std::vector<Vec3> parse_array_geometry(const std::string& text, const std::string& source) {
   std::istringstream in(text);
+  CommentedLines lines(in);
   std::string line, kind;
-  int line_number = 0;
   std::vector<Vec3> offsets;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
+  while (lines.next(&line)) {
     const std::vector<std::string> fields = split_whitespace(line);
-    if (fields.empty()) continue;
-    const std::string context = source + ":" + std::to_string(line_number);
+    const std::string context = source + ":" + std::to_string(lines.lines_read());
     if (kind.empty()) {
       kind = fields[0];
       if (kind == "linear") {

@@ -9,6 +9,7 @@
 
 #include "io/rxfile.h"
 #include "sim/mic_array.h"
+#include "util/commented_lines.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -273,14 +274,10 @@ std::vector<RoomSpec> parse_room_list(const std::string& text, const std::string
   std::vector<RoomSpec> rooms;
   std::set<std::string> ids;
   std::istringstream in(text);
+  CommentedLines lines(in);
   std::string line;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    if (trim(line).empty()) continue;
-    const std::string context = source + ":" + std::to_string(line_number);
+  while (lines.next(&line)) {
+    const std::string context = source + ":" + std::to_string(lines.lines_read());
     RoomSpec room = parse_room_list_line(line, context);
     if (!ids.insert(room.rir_id).second) {
       throw Error(context + ": duplicate rir id '" + room.rir_id + "'");

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "sim/room_list.h"
+#include "util/commented_lines.h"
 #include "util/error.h"
 #include "util/rng.h"
 #include "util/strings.h"
@@ -215,18 +216,14 @@ std::vector<MetadataSetup> read_but_reverbdb(const std::string& root, std::vecto
 
 std::vector<MetadataSetup> read_setup_table(const std::string& path) {
   std::istringstream in(read_text(path));
+  CommentedLines lines(in);
   std::string line;
-  int line_number = 0;
   std::map<std::string, size_t> column;
   std::vector<MetadataSetup> out;
   const char* const kNeeded[] = {"rir-id", "Lx", "Ly", "Lz", "sx", "sy", "sz", "mx", "my", "mz"};
-  while (std::getline(in, line)) {
-    ++line_number;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
+  while (lines.next(&line)) {
     const std::vector<std::string> f = split_whitespace(line);
-    if (f.empty()) continue;
-    const std::string where = path + ":" + std::to_string(line_number);
+    const std::string where = path + ":" + std::to_string(lines.lines_read());
     if (column.empty()) {
       for (size_t i = 0; i < f.size(); ++i) column[f[i]] = i;
       for (const char* need : kNeeded) {

@@ -1,5 +1,7 @@
 #include "util/config_file.h"
 
+#include "util/commented_lines.h"
+
 #include <fstream>
 #include <utility>
 
@@ -12,13 +14,10 @@ std::vector<ConfigEntry> read_config_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error("cannot read config file '" + path + "'");
   std::vector<ConfigEntry> entries;
-  std::string raw;
-  int line_no = 0;
-  while (std::getline(in, raw)) {
-    ++line_no;
-    const size_t hash = raw.find('#');
-    const std::string line = trim(hash == std::string::npos ? raw : raw.substr(0, hash));
-    if (line.empty()) continue;
+  CommentedLines lines(in);
+  std::string line;
+  while (lines.next(&line)) {
+    const int line_no = lines.lines_read();
     if (!starts_with(line, "--") || line.size() == 2 || line[2] == '=') {
       throw Error(located(path, line_no,
                           "expected --name=value (a config line of a command-line program), got '" + line + "'"));
