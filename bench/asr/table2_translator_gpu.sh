@@ -12,8 +12,10 @@
 #   GPU:  bench/asr/table2_translator_gpu.sh train DIR OUT_DIR [NAME] [STEPS]
 #         builds ts-rirgan-train against the machine's LibTorch (bench/gan/cuda_check.sh with
 #         ONLY_BUILD=1), trains NAME (paper: --config=conf/ts-rirgan-paper.conf; default: no
-#         config) for STEPS (default 2000) on CUDA, and writes OUT_DIR/NAME.tar (the model dir),
-#         OUT_DIR/summary.md (machine, command, time) and the training log;
+#         config) for STEPS (default 2000) on CUDA, and writes the model dir as OUT_DIR/NAME.tgz.00,
+#         .01, ... (gzip'd tar in 15 MB pieces: a device call returns files of at most 16 MB, and a
+#         checkpoint is ~84 MB), OUT_DIR/summary.md (machine, command, time) and the training log;
+#   here: cat OUT_DIR/NAME.tgz.* | tar xzf - -C SOMEWHERE
 #         (A rehearsal without a GPU: BIN=build/bin DEVICE=cpu ... train DIR OUT_DIR paper 3.)
 #   here: bench/asr/run_table2.sh --import-translator NAME=<the untarred model dir> ...
 #         checks the model's settings and steps against what run_table2.sh would train, and uses it.
@@ -74,7 +76,7 @@ train() {  # <dir> <out> [name] [steps]
          "median s/step: $(awk -F, 'NR>2{print $NF}' "$model/loss_log.csv" 2>/dev/null | sort -g | awk '{a[NR]=$1} END{print NR ? a[int((NR+1)/2)] : "n/a"}')"
   } >"$out/summary.md"
   cat "$out/summary.md" >&2
-  tar -C "$(dirname "$model")" -cf "$out/$name.tar" "$name"
+  tar -C "$(dirname "$model")" -cf - "$name" | gzip -1 | split -b 15M -d - "$out/$name.tgz."
   [ $rc = 0 ] || die "training stopped with status $rc: see $out/train_$name.log"
 }
 

@@ -1,5 +1,7 @@
 #include "gan/gan_settings.h"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -40,12 +42,9 @@ SettingsFile bound_file(GanSettings* settings) {
 
 // What the networks are built for (gan_networks.h): a file that says otherwise is not a model here.
 void check_supported(const GanSettings& s, const std::string& where) {
-  if (!(s.correction_max_hz >= 0 && s.correction_max_hz < 8000)) {
-    throw Error(where + ": correction_max_hz must be in [0, 8000)");
-  }
-  if (s.warmup_steps < 0) throw Error(where + ": warmup_steps must be >= 0");
-  if (s.width < 1 || s.kernel_length < 1 || s.slice_length != 16384 || s.sample_rate_hz != 16000.0) {
-    throw Error(where + ": unsupported model settings (width " + std::to_string(s.width) + ", slice " +
+  check_gan_settings(s, where);
+  if (s.kernel_length < 1 || s.slice_length != 16384 || s.sample_rate_hz != 16000.0) {
+    throw Error(where + ": unsupported model settings (kernel " + std::to_string(s.kernel_length) + ", slice " +
                 std::to_string(s.slice_length) + ")");
   }
 }
@@ -101,6 +100,27 @@ void GanSettings::RegisterStored(OptionsItf* opts) {
   opts->Register("sample-rate-hz", &sample_rate_hz, "Sample rate (fixed: 16000)");
   opts->Register("real-list", &real_list, "The real RIRs the model was trained on");
   opts->Register("synthetic-list", &synthetic_list, "The synthetic RIRs the model was trained on");
+}
+
+void check_gan_settings(const GanSettings& s, const std::string& file) {
+  auto require = [&file](bool ok, std::string option, const char* rule) {
+    if (ok) return;
+    if (file.empty()) throw Error("--" + option + " must be " + rule);
+    std::replace(option.begin(), option.end(), '-', '_');
+    throw Error(file + ": " + option + " must be " + rule);
+  };
+  auto non_negative = [](double x) { return x >= 0 && std::isfinite(x); };
+  require(s.width >= 1 && s.width <= 1024, "width", "in [1, 1024]");
+  require(s.batch_size >= 1, "batch-size", ">= 1");
+  require(s.disc_updates >= 1, "disc-updates", ">= 1");
+  require(s.learning_rate > 0 && std::isfinite(s.learning_rate), "learning-rate", "> 0");
+  require(non_negative(s.disc_learning_rate), "disc-learning-rate", ">= 0");
+  require(s.rmsprop_initial_ms == 0.0 || s.rmsprop_initial_ms == 1.0, "rmsprop-initial-ms", "1 or 0");
+  require(non_negative(s.cycle_weight), "cycle-weight", ">= 0");
+  require(non_negative(s.identity_weight), "identity-weight", ">= 0");
+  require(non_negative(s.gain_weight), "gain-weight", ">= 0");
+  require(s.warmup_steps >= 0, "warmup-steps", ">= 0");
+  require(s.correction_max_hz >= 0 && s.correction_max_hz < 8000, "correction-max-hz", "in (0, 8000) or 0");
 }
 
 SettingsValues gan_settings_values(const GanSettings& settings) {

@@ -120,6 +120,9 @@ SettingsValues gan_settings_values(const GanSettings& settings);
 std::string gan_settings_text(const GanSettings& settings);
 // `where` names the file for errors (unknown key, bad value, wrong format version).
 GanSettings parse_gan_settings(const std::string& text, const std::string& where);
+// The settings' ranges, checked in one place for both of their sources: the command line
+// (`file` empty: errors name "--width") and a settings file (errors name "<file>: width").
+void check_gan_settings(const GanSettings& settings, const std::string& file);
 GanSettings read_gan_settings_file(const std::string& path);
 void write_gan_settings_file(const std::string& path, const GanSettings& settings);  // atomic
 

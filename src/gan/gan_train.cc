@@ -474,18 +474,9 @@ std::string format_row(long long step, const StepLosses& L, double seconds) {
 void validate(const GanTrainOptions& o) {
   if (o.real_list.empty() || o.synthetic_list.empty()) throw Error("--real and --synthetic are required");
   if (o.steps < 1) throw Error("--steps must be >= 1");
-  if (o.model.width < 1 || o.model.width > 1024) throw Error("--width must be in [1, 1024]");
-  if (o.model.batch_size < 1) throw Error("--batch-size must be >= 1");
+  check_gan_settings(o.model, "");
   if (o.num_threads < 1) throw Error("--num-threads must be >= 1");
   if (o.checkpoint_every < 1) throw Error("--checkpoint-every must be >= 1");
-  if (o.model.disc_updates < 1) throw Error("--disc-updates must be >= 1");
-  if (!(o.model.learning_rate > 0) || !std::isfinite(o.model.learning_rate)) throw Error("--learning-rate must be > 0");
-  if (o.model.rmsprop_initial_ms != 0.0 && o.model.rmsprop_initial_ms != 1.0) throw Error("--rmsprop-initial-ms must be 1 or 0");
-  if (!(o.model.cycle_weight >= 0) || !std::isfinite(o.model.cycle_weight)) throw Error("--cycle-weight must be >= 0");
-  if (!(o.model.identity_weight >= 0) || !std::isfinite(o.model.identity_weight)) throw Error("--identity-weight must be >= 0");
-  if (!(o.model.gain_weight >= 0) || !std::isfinite(o.model.gain_weight)) throw Error("--gain-weight must be >= 0");
-  if (o.model.warmup_steps < 0) throw Error("--warmup-steps must be >= 0");
-  if (o.model.correction_max_hz != 0.0) gan::correction_lowpass_taps(o.model.correction_max_hz);
   if (o.collapse_check_every < 0) throw Error("--collapse-check-every must be >= 0");
   if (o.model.precision == GanPrecision::kBfloat16 && o.device != ComputeDevice::kCpu) {
     throw Error("--precision=bfloat16 is for --device=cpu");

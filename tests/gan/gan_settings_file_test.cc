@@ -152,5 +152,32 @@ TEST(GanSettingsFile, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(error_of(kFirstFormatFile), "");
 }
 
+// One range check serves ts-rirgan-train's command line and the settings file: the same rule,
+// named as each source spells it.
+TEST(GanSettingsFile, OneRangeCheckNamesTheOptionOrTheFileKey) {
+  auto message = [](GanSettings s, const std::string& file) {
+    try {
+      check_gan_settings(s, file);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(GanSettings(), ""), "");
+  GanSettings bad;
+  bad.warmup_steps = -1;
+  EXPECT_EQ(message(bad, ""), "--warmup-steps must be >= 0");
+  EXPECT_EQ(message(bad, "m/settings.txt"), "m/settings.txt: warmup_steps must be >= 0");
+  bad = GanSettings();
+  bad.disc_learning_rate = -1e-4;
+  EXPECT_EQ(message(bad, "m/settings.txt"), "m/settings.txt: disc_learning_rate must be >= 0");
+  bad = GanSettings();
+  bad.correction_max_hz = 8000;
+  EXPECT_EQ(message(bad, ""), "--correction-max-hz must be in (0, 8000) or 0");
+  bad = GanSettings();
+  bad.width = 1025;
+  EXPECT_EQ(message(bad, "f"), "f: width must be in [1, 1024]");
+}
+
 }  // namespace
 }  // namespace tsrir
