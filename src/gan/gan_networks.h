@@ -110,6 +110,10 @@ class GeneratorImpl : public torch::nn::Module {
   // Band-gain generators: the log gains [batch, bands, knots] (nepers) of the last forward pass
   // (training penalises them, --gain-weight); undefined for the other kinds.
   const torch::Tensor& last_log_gains() const { return last_log_gains_; }
+  // Residual and band-gain generators: the waveform correction's mean square per RIR [batch]
+  // over the last forward pass, in units of the input's mean square (training penalises it,
+  // --correction-weight); undefined for the original generator.
+  const torch::Tensor& last_correction_ms() const { return last_correction_ms_; }
 
  private:
   torch::Tensor activate(const torch::Tensor& x) const;
@@ -120,6 +124,7 @@ class GeneratorImpl : public torch::nn::Module {
   std::vector<SameConvTranspose1d> up_;
   BandGain band_gain_{nullptr};  // band-gain generators only
   torch::Tensor last_log_gains_;
+  torch::Tensor last_correction_ms_;
 };
 TORCH_MODULE(Generator);
 

@@ -20,7 +20,7 @@ namespace {
 const std::vector<std::string> kFileOrder = {
     "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
     "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
-    "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "generator_activation",
+    "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
     "generator_update", "disc_augment", "precision", "warmup_steps", "real_list", "synthetic_list"};
 
 SettingsStyle file_style() {
@@ -37,6 +37,11 @@ SettingsFile bound_file(GanSettings* settings) {
   SettingsFile file("tsrir-ts-rirgan-settings-v1", "a TS-RIRGAN settings file", file_style());
   settings->RegisterStored(&file);
   file.Order(kFileOrder);
+  // Added after models were written: left out at its default, so those files keep their bytes.
+  const double correction_weight = settings->correction_weight;
+  settings->correction_weight = GanSettings().correction_weight;
+  file.OmitWhenDefault({"correction-weight"});
+  settings->correction_weight = correction_weight;
   return file;
 }
 
@@ -71,6 +76,9 @@ void GanSettings::Register(OptionsItf* opts) {
   opts->Register("gain-weight", &gain_weight,
                  "Band-gain generators: weight of the L2 penalty on their log gains (nepers^2) in the generators' loss "
                  "(the paper has no such term)");
+  opts->Register("correction-weight", &correction_weight,
+                 "Residual and band-gain generators: weight of the L2 penalty on the waveform correction (its mean square "
+                 "re the input's) in the generators' loss (0 = none; the paper has no such term)");
   opts->Register("warmup-steps", &warmup_steps, "Ramp the learning rates linearly over the first N steps (0 = none, the paper)");
   opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
                   "Training arithmetic: bfloat16 = CPU autocast, bfloat16 convolutions with float32 weights, "
@@ -119,6 +127,7 @@ void check_gan_settings(const GanSettings& s, const std::string& file) {
   require(non_negative(s.cycle_weight), "cycle-weight", ">= 0");
   require(non_negative(s.identity_weight), "identity-weight", ">= 0");
   require(non_negative(s.gain_weight), "gain-weight", ">= 0");
+  require(non_negative(s.correction_weight), "correction-weight", ">= 0");
   require(s.warmup_steps >= 0, "warmup-steps", ">= 0");
   require(s.correction_max_hz >= 0 && s.correction_max_hz < 8000, "correction-max-hz", "in (0, 8000) or 0");
 }

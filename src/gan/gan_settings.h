@@ -56,6 +56,13 @@ struct GanSettings {
   // the discriminators ask it to (a departure; the paper has no such term). Files without the
   // key: 0.
   double gain_weight = 0.0;
+  // Residual and band-gain generators: weight of an L2 penalty on the waveform correction (its
+  // mean square over time after the input's onset, in units of the input's own mean square;
+  // mean over the translations) in the generators' loss: the correction adds only what the
+  // discriminators ask for, as gain_weight does for the gains (a departure; the paper has no such
+  // term; issue 34: without it band-gain's correction added 13-24 dB of low-frequency energy the
+  // real domain did not have). 0 = none, the default; files without the key: 0.
+  double correction_weight = 0.0;
   double rmsprop_initial_ms = 1.0;  // RMSProp's initial mean square: 1 (TF, the original) or 0
   // Generator up-path channels: original (16w, 8w, 4w: the original's code, 66.6 M parameters
   // per generator at width 64) or light (4w, 2w, w: what the original's code comments say,

@@ -359,14 +359,20 @@ class Trainer {
     L->d_synthetic = discriminator_update(m_.d_synthetic, m_.optimizers[3], s, fake_s.detach(), draw, "D_synthetic");
   }
 
-  // --gain-weight's term on the first `rows` of a band-gain generator's last pass (its
-  // translations), and their log gains' RMS in dB into *rms_db; zero for the other kinds.
+  // The penalties on the first `rows` of a generator's last pass (its translations):
+  // --correction-weight's on the waveform correction (residual and band-gain) and --gain-weight's
+  // on the log gains (band-gain; their RMS in dB into *rms_db); zero where there is neither.
   torch::Tensor translation_gain_penalty(const gan::Generator& g, int64_t rows, double* rms_db) const {
+    torch::Tensor penalty = torch::zeros({}, torch::kFloat);
+    const torch::Tensor& c = g->last_correction_ms();
+    if (c.defined() && m_.settings.correction_weight > 0) {
+      penalty = penalty.to(c.device()) + m_.settings.correction_weight * c.narrow(0, 0, rows).mean();
+    }
     const torch::Tensor& v = g->last_log_gains();
-    if (!v.defined()) return torch::zeros({}, torch::kFloat);
+    if (!v.defined()) return penalty;
     const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
     if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
-    return m_.settings.gain_weight * mean_square;
+    return penalty.to(mean_square.device()) + m_.settings.gain_weight * mean_square;
   }
 
   // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
@@ -523,6 +529,8 @@ GanSettings plan_settings(const GanTrainOptions& o, const ModelDirPaths& paths) 
   // Only band-gain generators have gains to penalise; 0 otherwise, as in the settings of models
   // made before the option, so that those resume under today's defaults.
   if (settings.generator != GanGenerator::kBandGain) settings.gain_weight = 0.0;
+  // The original generator has no correction to penalise.
+  if (settings.generator == GanGenerator::kOriginal) settings.correction_weight = 0.0;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
   if (!o.resume) {

@@ -354,6 +354,31 @@ TEST(GanNetworks, ResidualGeneratorStartsNearTheIdentity) {
   EXPECT_GT((y[1][0].narrow(0, 5000, 11384) - rir[1][0].narrow(0, 5000, 11384)).abs().max().item<double>(), 1e-4);
 }
 
+// --correction-weight's statistic: the mean square, per RIR, of what the residual generator added
+// (output - input, read off the output, not the network's inner tensor) after the onset, divided by
+// the input's mean square; zero before the onset, and undefined for the original generator.
+TEST(GanNetworks, CorrectionMeanSquareIsWhatTheOutputAddedReTheInput) {
+  torch::manual_seed(13);
+  Generator g(spec_of(4, GanDecoder::kLight, GanGenerator::kResidual), GanInit::kHe);
+  torch::NoGradGuard no_grad;
+  for (auto& p : g->parameters()) p.normal_(0, 0.05);
+  torch::Tensor x = torch::zeros({2, 1, 16384});
+  x[0][0][200] = 1.0, x[1][0][4000] = 0.5;  // onsets at different samples, different levels
+  x.narrow(2, 4100, 8000).normal_(0, 0.01);
+  const torch::Tensor added = (g->forward(x) - x).to(torch::kDouble).flatten(1);
+  const torch::Tensor input_ms = x.to(torch::kDouble).flatten(1).pow(2).mean(1);
+  const torch::Tensor expected = added.pow(2).mean(1) / input_ms;
+  const torch::Tensor got = g->last_correction_ms().to(torch::kDouble);
+  ASSERT_EQ(got.size(0), 2);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GT(expected[i].item<double>(), 1e-8);
+    EXPECT_NEAR(got[i].item<double>(), expected[i].item<double>(), 1e-3 * expected[i].item<double>());
+  }
+  Generator original(spec_of(4, GanDecoder::kLight), GanInit::kHe);
+  original->forward(x);
+  EXPECT_FALSE(original->last_correction_ms().defined());
+}
+
 // --correction-max-hz: whatever the weights, the correction has nothing left from max_hz up
 // (stopband < -70 dB by design; asserted -60 dB of the correction's own energy, measured with a
 // windowed FFT, not with the filter's taps), and the band below max_hz is corrected.

@@ -106,6 +106,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
   NameRecorder recorder;
   GanSettings s = default_training_settings();
   s.Register(&recorder);
+  s.correction_weight = 0.5;  // written only away from its default (added after files were written)
   const SettingsValues values = gan_settings_values(s);
   ASSERT_GE(recorder.names.size(), 19u);
   for (std::string name : recorder.names) {
@@ -117,6 +118,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.width = 3 + int(k), s.batch_size = 5, s.seed = 18446744073709551615ull, s.learning_rate = 1.0 / 3;
     s.disc_learning_rate = 2e-7, s.disc_updates = 4, s.cycle_weight = 0.1, s.identity_weight = 1e300;
     s.gain_weight = 0.25, s.rmsprop_initial_ms = 1, s.correction_max_hz = 7999.5, s.warmup_steps = 1LL << 40;
+    s.correction_weight = 0.125;
     s.generator = kGanGeneratorNames[k].second;
     s.init = kGanInitNames[k % 2].second, s.decoder = kGanDecoderNames[k % 2].second;
     s.generator_activation = kGanActivationNames[k % 2].second;
@@ -129,6 +131,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_EQ(back.learning_rate, 1.0 / 3);
     EXPECT_EQ(back.seed, 18446744073709551615ull);
     EXPECT_EQ(back.warmup_steps, 1LL << 40);
+    EXPECT_EQ(back.correction_weight, 0.125);
     EXPECT_EQ(back.generator, s.generator);
     EXPECT_EQ(back.precision, s.precision);
     EXPECT_EQ(back.real_list, "a b/real.scp");
