@@ -263,7 +263,7 @@ class Trainer {
       // One batched pass of g over [source; f(target); target].
       const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
       // The translation pass's gains are the first b rows of the batched pass's.
-      const torch::Tensor gains = translation_gain_penalty(g, b, real_side ? &L->gain_rms_db : nullptr);
+      const torch::Tensor gains = translation_penalty(g, b, real_side ? &L->gain_rms_db : nullptr);
       const torch::Tensor translated = out.narrow(0, 0, b);
       const torch::Tensor out_float = out.to(torch::kFloat);
       const torch::Tensor target_cycled = out_float.narrow(0, b, b);
@@ -313,9 +313,9 @@ class Trainer {
         // seeds were re-run with it, bench/RESULTS.md). The identity columns of the loss log
         // read "nan" (not measured).
         const torch::Tensor out_sr = m_.g_real->forward(identity ? torch::cat({s, r}, 0) : s);
-        const torch::Tensor gains_sr = translation_gain_penalty(m_.g_real, b, &L->gain_rms_db);
+        const torch::Tensor gains_sr = translation_penalty(m_.g_real, b, &L->gain_rms_db);
         const torch::Tensor out_rs = m_.g_synthetic->forward(identity ? torch::cat({r, s}, 0) : r);
-        const torch::Tensor gains_rs = translation_gain_penalty(m_.g_synthetic, b, nullptr);
+        const torch::Tensor gains_rs = translation_penalty(m_.g_synthetic, b, nullptr);
         fake_r = out_sr.narrow(0, 0, b);
         fake_s = out_rs.narrow(0, 0, b);
         const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
@@ -362,7 +362,7 @@ class Trainer {
   // The penalties on the first `rows` of a generator's last pass (its translations):
   // --correction-weight's on the waveform correction (residual and band-gain) and --gain-weight's
   // on the log gains (band-gain; their RMS in dB into *rms_db); zero where there is neither.
-  torch::Tensor translation_gain_penalty(const gan::Generator& g, int64_t rows, double* rms_db) const {
+  torch::Tensor translation_penalty(const gan::Generator& g, int64_t rows, double* rms_db) const {
     torch::Tensor penalty = torch::zeros({}, torch::kFloat);
     const torch::Tensor& c = g->last_correction_ms();
     if (c.defined() && m_.settings.correction_weight > 0) {
