@@ -33,6 +33,9 @@ struct RecordingPlan {
   double duration_s = 0.0;      // of the input recording (reco2dur)
   std::string room;             // room of the RIR draw ("" = no RIRs)
   long rir = -1;                // index into AugmentSources::rirs, -1 = speech not reverberated
+  // reverberate-data --split-channels: the channel of the RIR this entry uses (wav-reverberate
+  // --rir-channel); -1 = the default (channel 0, with a warning for a multichannel RIR).
+  int rir_channel = -1;
   std::vector<PlannedNoise> noises;
   bool modified() const { return rir >= 0 || !noises.empty(); }
 };

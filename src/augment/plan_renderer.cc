@@ -53,6 +53,19 @@ std::shared_ptr<const PlanRenderer::RirChannels> PlanRenderer::rir_channels(long
   });
 }
 
+std::shared_ptr<const PreparedRir> PlanRenderer::speech_rir(const RecordingPlan& plan, double rate) {
+  if (plan.rir_channel < 0) return rir(plan.rir, rate);
+  const std::shared_ptr<const RirChannels> channels = rir_channels(plan.rir, rate);
+  if (!channels) return nullptr;
+  if (static_cast<size_t>(plan.rir_channel) >= channels->size()) {
+    const RirChoice& choice = sources_.rirs[static_cast<size_t>(plan.rir)];
+    throw Error(choice.where + " (RIR '" + choice.id + "'): has " + std::to_string(channels->size()) +
+                " channel(s), no channel " + std::to_string(plan.rir_channel));
+  }
+  // Shares ownership of all the RIR's channels (aliasing constructor).
+  return std::shared_ptr<const PreparedRir>(channels, (*channels)[static_cast<size_t>(plan.rir_channel)].get());
+}
+
 std::vector<std::vector<float>> PlanRenderer::render_channels(const std::vector<float>& speech, double rate,
                                                               const RecordingPlan& plan) {
   if (!plan.noises.empty()) throw Error("multichannel output adds no noises, but the plan has some");
@@ -78,9 +91,9 @@ std::vector<AdditiveSignal> PlanRenderer::additive_signals(const RecordingPlan& 
 }
 
 std::vector<float> PlanRenderer::render(const std::vector<float>& speech, double rate, const RecordingPlan& plan) {
-  const std::shared_ptr<const PreparedRir> speech_rir = rir(plan.rir, rate);
+  const std::shared_ptr<const PreparedRir> rir = speech_rir(plan, rate);
   const std::vector<AdditiveSignal> additive = additive_signals(plan, rate);
-  return reverberate_channel(speech, rate, speech_rir.get(), additive, reverb_);
+  return reverberate_channel(speech, rate, rir.get(), additive, reverb_);
 }
 
 }  // namespace tsrir

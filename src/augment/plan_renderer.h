@@ -24,6 +24,9 @@ class PlanRenderer {
 
   // RIR `index` of the sources at `rate` (null for -1: no RIR).
   std::shared_ptr<const PreparedRir> rir(long index, double rate);
+  // The RIR the plan's speech is reverberated with: its channel plan.rir_channel (from
+  // --split-channels), else channel 0; null without one.
+  std::shared_ptr<const PreparedRir> speech_rir(const RecordingPlan& plan, double rate);
   // The plan's noises as they are added to the reverberant speech.
   std::vector<AdditiveSignal> additive_signals(const RecordingPlan& plan, double rate);
   // The far-field copy of `speech` (one channel at `rate`), before any encoding.

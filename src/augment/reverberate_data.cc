@@ -174,6 +174,10 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
                  "one output channel per channel of the recording's RIR (a microphone array's, e.g. from rir-simulate "
                  "mic=x,y,z;x,y,z): one multichannel recording per utterance (wav-reverberate "
                  "--multi-channel-output=true); no noises are added in this mode");
+  opts->Register("split-channels", &split_channels,
+                 "one recording per channel of the recording's RIR instead (the per-channel form): ids <id>.CH<c> "
+                 "(c from 1), pipes with wav-reverberate --rir-channel=<c-1>, reco2file_and_channel '<id> <id> A'; "
+                 "no noises are added in this mode");
   opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
   CommonOptions(opts).seed(&random_seed, "every draw");
   opts->Register("sample-rate", &source_sampling_rate_hz,
@@ -223,6 +227,15 @@ ReverberatePlan to_plan(const ReverberateDataOptions& o, OptionSpelling spelling
                 "the recording's RIR): drop " + spelled("noise-set-parameters", spelling) +
                 ", or add noise per channel afterwards");
   }
+  if (o.split_channels && o.multi_channel_output) {
+    throw Error(spelled("split-channels", spelling) + " and " + spelled("multi-channel-output", spelling) +
+                " are two forms of the same data (one recording per channel, or one multichannel recording): "
+                "choose one");
+  }
+  if (o.split_channels && !o.noise_set_parameters.empty()) {
+    throw Error(spelled("split-channels", spelling) + " adds no noises (each channel would need its own channel "
+                "of every noise): drop " + spelled("noise-set-parameters", spelling));
+  }
   if (o.source_sampling_rate_hz < 0) {
     throw Error(spelled("sample-rate", spelling) + " must be > 0 Hz (or 0: the first recording's), got " +
                 format_double(o.source_sampling_rate_hz));
@@ -254,6 +267,7 @@ ReverberatePlan to_plan(const ReverberateDataOptions& o, OptionSpelling spelling
   p.random_seed = o.random_seed;
   plan.reverb = o.reverb;
   plan.multi_channel_output = o.multi_channel_output;
+  plan.split_channels = o.split_channels;
   plan.sample_rate_hz = o.source_sampling_rate_hz;
   return plan;
 }
@@ -278,6 +292,46 @@ std::vector<RecordingPlan> plan_copies(const std::string& in_dir, const DataDir&
   }
   resolve_noise_offsets(noise_duration_s, &plans);
   return plans;
+}
+
+// Kaldi/CHiME's id suffix of channel `channel` (from 0) of a split recording.
+std::string channel_suffix(int channel) { return ".CH" + std::to_string(channel + 1); }
+
+// --split-channels: each reverberated plan becomes one plan per channel of its RIR (each RIR's
+// channels read once from its header), ids suffixed; plans without an RIR stay as they are.
+std::vector<RecordingPlan> split_into_channels(std::vector<RecordingPlan> plans, const AugmentSources& sources) {
+  std::map<long, int> rir_channels;
+  std::vector<RecordingPlan> out;
+  for (RecordingPlan& recording : plans) {
+    if (recording.rir < 0) {
+      out.push_back(std::move(recording));
+      continue;
+    }
+    auto it = rir_channels.find(recording.rir);
+    if (it == rir_channels.end()) {
+      const RirChoice& rir = sources.rirs[static_cast<size_t>(recording.rir)];
+      const int channels = rx_audio_header(rir.rxfilename, false, rir.where + " (RIR '" + rir.id + "')").channels;
+      it = rir_channels.emplace(recording.rir, channels).first;
+    }
+    for (int c = 0; c < it->second; ++c) {
+      RecordingPlan one = recording;
+      one.new_id += channel_suffix(c);
+      one.rir_channel = c;
+      out.push_back(std::move(one));
+    }
+  }
+  return out;
+}
+
+// (copy, input recording id) -> the suffixes of its output recordings ("" unless split).
+using ChannelSuffixes = std::map<std::pair<int, std::string>, std::vector<std::string>>;
+ChannelSuffixes channel_suffixes(const std::vector<RecordingPlan>& plans) {
+  ChannelSuffixes suffixes;
+  for (const RecordingPlan& recording : plans) {
+    suffixes[{recording.copy, recording.source_id}].push_back(
+        recording.rir_channel >= 0 ? channel_suffix(recording.rir_channel) : std::string());
+  }
+  return suffixes;
 }
 
 // wav.scp of pipes that regenerate each recording. Fails now, not inside a feature-extraction job,
@@ -364,7 +418,7 @@ long long write_one_wav(const RecordingPlan& recording, const std::string& in_di
   }
   log_info(where + ": longer than " + format_double(options.max_in_memory_s) +
            " s: reverberated in passes over the file (memory independent of its length)");
-  const std::shared_ptr<const PreparedRir> rir = renderer.rir(recording.rir, rate);
+  const std::shared_ptr<const PreparedRir> rir = renderer.speech_rir(recording, rate);
   std::vector<StreamChannel> channels(1);
   channels[0].rir = rir.get();
   channels[0].additive = renderer.additive_signals(recording, rate);
@@ -405,32 +459,45 @@ std::map<std::string, std::string> write_wavs(const std::vector<RecordingPlan>& 
   return wav_scp;
 }
 
-// The copies' utterance tables (Kaldi's ids): utt2spk, text, utt2uniq (new id -> original), segments.
+// The copies' utterance tables (Kaldi's ids): utt2spk, text, utt2uniq (new id -> original), segments;
+// with --split-channels one utterance per channel of its recording, same speaker.
 void copy_utterance_tables(const DataDir& input, const std::string& prefix, const std::vector<int>& copies,
-                           DataDir* output) {
+                           const ChannelSuffixes& suffixes, DataDir* output) {
+  const std::vector<std::string> unsplit{""};
   for (int copy : copies) {
     for (const auto& [utt, spk] : input.utt2spk) {
-      const std::string new_utt = copy_id(utt, prefix, copy);
-      output->utt2spk[new_utt] = copy_id(spk, prefix, copy);
-      auto text = input.text.find(utt);
-      if (text != input.text.end()) output->text[new_utt] = text->second;
-      auto uniq = input.utt2uniq.find(utt);
-      output->utt2uniq[new_utt] = uniq != input.utt2uniq.end() ? uniq->second : utt;
       auto seg = input.segments.find(utt);
-      if (seg != input.segments.end()) {
-        Segment s = seg->second;
-        s.recording_id = copy_id(s.recording_id, prefix, copy);
-        output->segments[new_utt] = s;
+      const std::string& recording = seg != input.segments.end() ? seg->second.recording_id : utt;
+      auto channels = suffixes.find({copy, recording});
+      for (const std::string& suffix : channels != suffixes.end() ? channels->second : unsplit) {
+        const std::string new_utt = copy_id(utt, prefix, copy) + suffix;
+        output->utt2spk[new_utt] = copy_id(spk, prefix, copy);
+        auto text = input.text.find(utt);
+        if (text != input.text.end()) output->text[new_utt] = text->second;
+        auto uniq = input.utt2uniq.find(utt);
+        output->utt2uniq[new_utt] = uniq != input.utt2uniq.end() ? uniq->second : utt;
+        if (seg != input.segments.end()) {
+          Segment s = seg->second;
+          s.recording_id = copy_id(s.recording_id, prefix, copy) + suffix;
+          output->segments[new_utt] = s;
+        }
       }
     }
   }
 }
 
 // Writes the data dir into `out_dir` (the staging dir) and checks it as validate_data_dir.sh would.
+// With --split-channels, reco2file_and_channel names each channel's recording as its own file
+// (side A), whatever the input had.
 void write_checked_data_dir(const std::string& in_dir, const std::string& out_dir, const DataDir& output,
-                            const std::string& prefix, const std::vector<int>& copies, bool has_text) {
+                            const std::string& prefix, const std::vector<int>& copies, bool has_text,
+                            bool split_channels) {
   write_data_dir(out_dir, output);
-  if (fs::exists(in_dir + "/reco2file_and_channel"))
+  if (split_channels) {
+    std::vector<std::pair<std::string, std::string>> rows;
+    for (const auto& [id, rx] : output.wav_scp) rows.emplace_back(id, id + " A");
+    write_table(out_dir + "/reco2file_and_channel", std::move(rows));
+  } else if (fs::exists(in_dir + "/reco2file_and_channel"))
     copy_renamed_table(in_dir + "/reco2file_and_channel", out_dir + "/reco2file_and_channel", prefix, copies, true);
   if (fs::exists(in_dir + "/vad.scp"))
     copy_renamed_table(in_dir + "/vad.scp", out_dir + "/vad.scp", prefix, copies, false);
@@ -450,7 +517,8 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   const ReverberatePlan plan = to_plan(options, OptionSpelling::kCommandLine);
   const DataDir input = read_data_dir(in_dir);
   if (input.wav_scp.empty()) throw Error(in_dir + "/wav.scp: no recordings");
-  const std::vector<RecordingPlan> plans = plan_copies(in_dir, input, plan, options.num_threads);
+  std::vector<RecordingPlan> plans = plan_copies(in_dir, input, plan, options.num_threads);
+  if (plan.split_channels) plans = split_into_channels(std::move(plans), plan.sources);
   const auto& [first_id, first_rx] = *input.wav_scp.begin();
   const DirSampleRate dir_rate(plan.sample_rate_hz, first_id, first_rx, in_dir + "/wav.scp: recording '" + first_id + "'");
 
@@ -477,12 +545,12 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   std::vector<int> copies;
   for (int c = options.include_original_data ? 0 : 1; c <= options.num_replications; ++c) copies.push_back(c);
   const std::string& prefix = plan.planning.prefix;
-  copy_utterance_tables(input, prefix, copies, &output);
+  copy_utterance_tables(input, prefix, copies, channel_suffixes(plans), &output);
   // Shifted outputs keep the input's length, so its durations carry over to the new ids.
   if (options.reverb.shift_output) {
     for (const RecordingPlan& recording : plans) output.reco2dur[recording.new_id] = recording.duration_s;
   }
-  write_checked_data_dir(in_dir, out.path(), output, prefix, copies, !input.text.empty());
+  write_checked_data_dir(in_dir, out.path(), output, prefix, copies, !input.text.empty(), plan.split_channels);
   if (wav_dir) wav_dir->commit();
   out.commit();
 

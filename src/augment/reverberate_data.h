@@ -46,6 +46,11 @@ struct ReverberateDataOptions {
   // multichannel recording per utterance, as wav-reverberate --multi-channel-output=true. Noises
   // are not added in this mode (they would need as many channels as the RIR).
   bool multi_channel_output = false;
+  // One recording per channel of the recording's RIR instead (the per-channel form, as CHiME-4's
+  // 6-channel training data): ids with Kaldi/CHiME's ".CH<c>" suffix (c from 1), each entry's
+  // pipe wav-reverberate --rir-channel=<c-1>, and a reco2file_and_channel "<id> <id> A" (Kaldi's
+  // validate_data_dir.sh accepts only sides A and B). Noises are not added in this mode.
+  bool split_channels = false;
   bool include_original_data = false;
   Seed random_seed = 0;
   double source_sampling_rate_hz = 0.0;            // --sample-rate: > 0 the data dir's rate (rate_policy.h)
@@ -78,6 +83,7 @@ struct ReverberatePlan {
   PlanOptions planning;
   ReverbOptions reverb;
   bool multi_channel_output = false;  // --multi-channel-output
+  bool split_channels = false;        // --split-channels
   // --sample-rate: the data dir's rate when > 0, else (0) its first recording's; a recording at
   // another rate is resampled only when it was given (DirSampleRate, rate_policy.h).
   double sample_rate_hz = 0.0;

@@ -1,6 +1,7 @@
 #include "sim/diffuse_tail.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -63,7 +64,8 @@ std::vector<std::vector<float>> diffuse_coherent_noise(const std::vector<std::ve
   // The factor is computed every kCoherenceStepBins bins and interpolated linearly between: the
   // coherence changes on the scale c / d (>= 343 Hz for d <= 1 m), the bins are ~1 Hz apart, and
   // the interpolation's error, (step k)^2 d^2 / 8, stays below 3e-3 for d <= 1 m.
-  std::vector<double> l_next(m * m, 0.0), l_bin(m * m, 0.0);
+  std::vector<double> l_next(m * m, 0.0);
+  std::vector<std::complex<double>> spectrum_bin(m);
   const auto wavenumber = [&](size_t bin) {
     return 2.0 * kPi * (bin * sample_rate_hz / fft.size()) / speed_of_sound_m_s;
   };
@@ -76,10 +78,13 @@ std::vector<std::vector<float>> diffuse_coherent_noise(const std::vector<std::ve
       coherence_cholesky(distance, m, wavenumber(bin + kCoherenceStepBins), &a, &l_next);
     }
     const double w = static_cast<double>(offset) / kCoherenceStepBins;
-    for (size_t i = 0; i < m * m; ++i) l_bin[i] = (1.0 - w) * l[i] + w * l_next[i];
-    for (size_t i = 0; i < m; ++i) {
+    for (size_t j = 0; j < m; ++j) spectrum_bin[j] = spectra[j][bin];
+    for (size_t i = 0; i < m; ++i) {  // the factor is lower triangular: j <= i only
       std::complex<double> v = 0.0;
-      for (size_t j = 0; j <= i; ++j) v += l_bin[i * m + j] * std::complex<double>(spectra[j][bin]);
+      for (size_t j = 0; j <= i; ++j) {
+        const size_t ij = i * m + j;
+        v += ((1.0 - w) * l[ij] + w * l_next[ij]) * spectrum_bin[j];
+      }
       mixed[i] = std::complex<float>(v);
     }
     for (size_t i = 0; i < m; ++i) spectra[i][bin] = mixed[i];
@@ -114,6 +119,43 @@ std::vector<float> white_noise(Rng& rng, size_t n) {
   for (float& x : noise) x = static_cast<float>(rng.uniform(-half_width, half_width));
   return noise;
 }
+
+// The bands' envelopes advanced together, sample by sample: each band's recurrence is a chain of
+// dependent multiplications, and interleaving the bands' chains lets them overlap (the tail took
+// an eighth of a render's CPU time waiting on them). Each band's arithmetic is what a band-by-band
+// loop does, so the samples are the same.
+struct TailEnvelopes {
+  int count = 0;
+  std::array<float*, kNumOctaveBands> out{};
+  std::array<double, kNumOctaveBands> amp{}, amp_step{}, specular{}, specular_step{};
+
+  void add_band(float* band_out, double amp0, double amp_step0, double specular0, double specular_step0) {
+    out[count] = band_out;
+    amp[count] = amp0;
+    amp_step[count] = amp_step0;
+    specular[count] = specular0;
+    specular_step[count] = specular_step0;
+    ++count;
+  }
+
+  // Before `transition` the tail carries the scattered share 1 - specular; from it on, everything.
+  void render(const float* white, size_t first, size_t transition, size_t n) {
+    size_t i = first;
+    for (; i < transition; ++i) {
+      for (int b = 0; b < count; ++b) {
+        out[b][i] += static_cast<float>(amp[b] * std::sqrt(1.0 - specular[b]) * white[i]);
+        amp[b] *= amp_step[b];
+        specular[b] *= specular_step[b];
+      }
+    }
+    for (; i < n; ++i) {
+      for (int b = 0; b < count; ++b) {
+        out[b][i] += static_cast<float>(amp[b] * white[i]);
+        amp[b] *= amp_step[b];
+      }
+    }
+  }
+};
 
 }  // namespace
 
@@ -158,34 +200,24 @@ void DiffuseTailComponent::add_tail(const RenderContext& ctx, const float* white
   const double reflections_per_s = room.speed_of_sound_m_s * room.surface_area_m2() / (4.0 * room.volume_m3());
   const size_t transition = std::min(n, static_cast<size_t>(std::ceil(facts.transition_time_s * fs)));
 
+  // Per band: the amplitude envelope sqrt(level * density * exp(-rate t)) and the specular share
+  // (1 - s)^k(t) = exp(ln(1 - s) * reflections_per_s * t), both advanced multiplicatively.
+  TailEnvelopes env;
   for (int b = 0; b < kNumOctaveBands; ++b) {
     if (std::isinf(rate[b])) continue;  // a = 1: no reverberation in this band
     double level = 1.0;
     if (facts.transition_time_s > 0.0 && facts.window_diffuse_energy[b] > 0.0) {
       level = std::clamp(facts.window_image_energy[b] / facts.window_diffuse_energy[b], 0.25, 4.0);
     }
-    // Amplitude envelope sqrt(level * density * exp(-rate t)), advanced multiplicatively.
     const double t0 = first / fs;
     double amp = std::sqrt(level * density_per_sample) * std::exp(-0.5 * rate[b] * t0);
     if (pattern_energy != 1.0) amp *= std::sqrt(pattern_energy);
-    const double amp_step = std::exp(-0.5 * rate[b] / fs);
-    // Specular share (1 - s)^k(t) = exp(ln(1 - s) * reflections_per_s * t).
     const double s = room.scattering[b];
     const double log_specular_rate = s >= 1.0 ? -INFINITY : std::log1p(-s) * reflections_per_s;
-    double specular = std::exp(log_specular_rate * t0);
-    const double specular_step = std::exp(log_specular_rate / fs);
-    float* out = bands.band[b].data();
-    size_t i = first;
-    for (; i < transition; ++i) {
-      out[i] += static_cast<float>(amp * std::sqrt(1.0 - specular) * white[i]);
-      amp *= amp_step;
-      specular *= specular_step;
-    }
-    for (; i < n; ++i) {
-      out[i] += static_cast<float>(amp * white[i]);
-      amp *= amp_step;
-    }
+    env.add_band(bands.band[b].data(), amp, std::exp(-0.5 * rate[b] / fs), std::exp(log_specular_rate * t0),
+                 std::exp(log_specular_rate / fs));
   }
+  env.render(white, first, transition, n);
 }
 
 }  // namespace tsrir::sim

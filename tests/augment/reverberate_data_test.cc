@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -272,6 +273,74 @@ TEST_F(ReverberateData, FailuresLeaveNothingHalfWritten) {
   EXPECT_FALSE(fs::exists(dir + "/out/wav.scp"));
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
+}
+
+// --split-channels (the per-channel form of an array's far-field data): one entry per channel of a
+// 3-channel RIR, ids <id>.CH<c>, one utterance per channel with the same speaker, Kaldi's
+// reco2file_and_channel, a valid data dir; channel c's audio (pipe and --write-wavs alike) is the
+// reference model's reverberation with the RIR's channel c, within 1 LSB of 16 bits.
+TEST_F(ReverberateData, SplitChannelsGivesOneEntryPerArrayChannel) {
+  std::vector<reftest::Vec> array;
+  for (int c = 0; c < 3; ++c) array.push_back(reftest::synthetic_rir(3000, 16000, 40 + 9 * c, 0.3, 20 + c));
+  reftest::write_wav(dir + "/rirs/array3.wav", array, 16000, 32, true);
+  write_text(dir + "/lists/rir_list_array", "--rir-id arr --room-id roomC rirs/array3.wav\n");
+  write_text(dir + "/seg/wav.scp", "recA " + dir + "/audio/spkA-u2.wav\n");
+  write_text(dir + "/seg/segments", "s1-a recA 0.0 0.5\ns1-b recA 0.5 0.9\n");
+  write_text(dir + "/seg/utt2spk", "s1-a s1\ns1-b s1\n");
+  write_text(dir + "/seg/reco2file_and_channel", "recA recA A\n");
+  const std::string common = "--rir-set-parameters lists/rir_list_array --split-channels true ";
+  for (const std::string in : {"in", "seg"}) {
+    SCOPED_TRACE(in);
+    CliRun piped = run_in(dir, common + in + " " + in + "_pipe");
+    ASSERT_EQ(piped.status, 0) << piped.log;
+    CliRun written = run_in(dir, common + "--write-wavs " + in + "_wavs " + in + " " + in + "_wav");
+    ASSERT_EQ(written.status, 0) << written.log;
+    // Streamed in passes over the file: the same wavs.
+    CliRun streamed = run_in(dir, common + "--max-in-memory-duration 0 --write-wavs " + in + "_swavs " + in + " " + in + "_s");
+    ASSERT_EQ(streamed.status, 0) << streamed.log;
+    EXPECT_TRUE(tsrir::validate_data_dir(dir + "/" + in + "_pipe").empty());
+    EXPECT_TRUE(tsrir::validate_data_dir(dir + "/" + in + "_wav").empty());
+    tsrir::DataDir p = tsrir::read_data_dir(dir + "/" + in + "_pipe"), w = tsrir::read_data_dir(dir + "/" + in + "_wav");
+    const tsrir::DataDir input = tsrir::read_data_dir(dir + "/" + in);
+    ASSERT_EQ(p.wav_scp.size(), 3 * input.wav_scp.size());
+    ASSERT_EQ(p.utt2spk.size(), 3 * input.utt2spk.size());
+    EXPECT_EQ(p.utt2spk, w.utt2spk);
+    const std::string r2fc = read_text(dir + "/" + in + "_pipe/reco2file_and_channel");
+    for (const auto& [reco, rx] : input.wav_scp) {
+      const std::vector<float> samples = tsrir::read_audio(rx).samples;  // 16-bit values already
+      const reftest::Vec speech(samples.begin(), samples.end());
+      for (int c = 0; c < 3; ++c) {
+        const std::string id = reco + ".CH" + std::to_string(c + 1);
+        ASSERT_TRUE(p.wav_scp.count(id)) << id;
+        EXPECT_NE(p.wav_scp.at(id).find("--rir-channel=" + std::to_string(c)), std::string::npos) << p.wav_scp.at(id);
+        EXPECT_NE(r2fc.find(id + " " + id + " A\n"), std::string::npos) << r2fc;
+        const std::string& pipe = p.wav_scp.at(id);
+        tsrir::AudioInfo info;
+        const auto regenerated = tsrir::decode_audio_bytes(
+            tsrir::run_command_capture("cd " + dir + " && " + pipe.substr(0, pipe.size() - 1), id), &info, id);
+        const std::vector<float> materialised = tsrir::read_audio(w.wav_scp.at(id)).samples;
+        EXPECT_EQ(regenerated.at(0), materialised) << id;
+        EXPECT_EQ(read_text(w.wav_scp.at(id)), read_text(dir + "/" + in + "_swavs/" + id + ".wav")) << id;
+        const reftest::Vec want = reftest::wav_reverberate(speech, 16000, array[c], {}, {}).output;
+        ASSERT_EQ(materialised.size(), want.size()) << id;
+        double worst_lsb = 0;
+        for (size_t i = 0; i < want.size(); ++i)
+          worst_lsb = std::max(worst_lsb, std::abs(materialised[i] - std::clamp(want[i], -1.0, 32767.0 / 32768.0)) * 32768.0);
+        EXPECT_LE(worst_lsb, 1.0) << id;
+      }
+    }
+    if (in == "seg") {
+      EXPECT_EQ(p.segments.at("s1-b.CH2").recording_id, "recA.CH2");
+      EXPECT_EQ(p.utt2spk.at("s1-b.CH3"), "s1");
+      EXPECT_EQ(p.utt2uniq.at("s1-a.CH1"), "s1-a");
+    } else {
+      EXPECT_EQ(p.text.at("spkB-u1.CH3"), "HELLO WORLD 4");
+    }
+  }
+  EXPECT_NE(run_in(dir, common + "--multi-channel-output true in o").status, 0);
+  CliRun noisy = run_in(dir, common + "--noise-set-parameters lists/noise_list in o");
+  EXPECT_NE(noisy.status, 0);
+  EXPECT_NE(noisy.log.find("--split-channels"), std::string::npos) << noisy.log;
 }
 
 TEST_F(ReverberateData, HelpAndBadOptions) {
