@@ -3,7 +3,9 @@
 with pyroomacoustics' ShoeBox, image sources only or hybrid ISM + ray tracing (compiled libroom),
 and prints the median time per RIR of Room.compute_rir() (interpreter start and imports excluded).
 
-  PYTHONPATH=$PRA_PYTHONPATH python3 pra_sim.py ROOM ism|hybrid REPS THREADS [out.wav]
+  PYTHONPATH=$PRA_PYTHONPATH python3 pra_sim.py ROOM ism|hybrid REPS THREADS [out.wav] [--mics=N]
+  --mics=N: a circular array of N microphones, radius 5 cm, horizontal, centred on the room's mic
+  (issue 33's array benchmark, bench/peers/array_speed.sh); the time is that of the whole array.
 Prints: mode=... rirs=R cpu_s_per_rir=<median process CPU s> wall_s_per_rir=<median> length_s=<RIR>
   ism:    max_order from pra.inverse_sabine(target T60, room) (pra's documented recipe), no air absorption
   hybrid: max_order=3 + ray tracing with pra's default settings (set_ray_tracing()), scattering 0.1
@@ -21,7 +23,13 @@ import pyroomacoustics as pra  # noqa: E402
 FS = 16000
 
 
-def make_room(r, mode):
+def circular_array(centre, n, radius_m=0.05):
+    angles = 2 * np.pi * np.arange(n) / n
+    return np.array([centre[0] + radius_m * np.cos(angles), centre[1] + radius_m * np.sin(angles),
+                     np.full(n, centre[2])])
+
+
+def make_room(r, mode, mics=1):
     if mode == "ism":
         _, max_order = pra.inverse_sabine(r["t60"], r["dim"])
         room = pra.ShoeBox(r["dim"], fs=FS, materials=pra.Material(r["alpha"]), max_order=max_order,
@@ -33,11 +41,18 @@ def make_room(r, mode):
     else:
         sys.exit("mode must be ism or hybrid")
     room.add_source(r["src"])
-    room.add_microphone(np.array(r["mic"]))
+    if mics == 1:
+        room.add_microphone(np.array(r["mic"]))
+    else:
+        room.add_microphone_array(circular_array(r["mic"], mics))
     return room
 
 
 def main():
+    mics = 1
+    for a in [a for a in sys.argv if a.startswith("--mics=")]:
+        mics = int(a.split("=", 1)[1])
+        sys.argv.remove(a)
     if len(sys.argv) < 5:
         sys.exit(__doc__)
     r = rooms.by_name(sys.argv[1])
@@ -45,7 +60,7 @@ def main():
     pra.constants.set("num_threads", threads)
     cpu, wall, length = [], [], 0
     for k in range(reps):
-        room = make_room(r, mode)  # room set-up is not timed; compute_rir() is the simulation
+        room = make_room(r, mode, mics)  # room set-up is not timed; compute_rir() is the simulation
         c0, w0 = time.process_time(), time.perf_counter()
         room.compute_rir()
         cpu.append(time.process_time() - c0)

@@ -14,12 +14,14 @@ run() {  # name, command...
 }
 if [ "$q" = quick ]; then
   run sim_speed "$here/sim_speed.sh" 50 1 1
+  run array_speed "$here/array_speed.sh" 50 1
   run metrics_speed "$here/metrics_speed.sh" 50
   run reverb_speed "$here/reverb_speed.sh" 5 10
   run datadir_speed "$here/datadir_speed.sh" 10 10
   run band_accuracy "$here/band_accuracy.sh" 2
 else
   run sim_speed "$here/sim_speed.sh"
+  run array_speed "$here/array_speed.sh"
   run metrics_speed "$here/metrics_speed.sh"
   run reverb_speed "$here/reverb_speed.sh"
   run datadir_speed "$here/datadir_speed.sh"
