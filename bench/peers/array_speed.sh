@@ -18,8 +18,7 @@ echo
 echo "## CPU s per source position, 16 kHz, one core"
 echo "| room | tsrir 1 mic | tsrir 8 mics | tsrir 8/1 | pra hybrid 1 mic | pra hybrid 8 mics | pra 8/1 | pra 8 mics / tsrir 8 mics |"
 echo "|---|---|---|---|---|---|---|---|"
-pra_field() { sed -n "s/.*$1=\([0-9.]*\).*/\1/p"; }
-for room in $("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'); do
+for room in $(room_names); do
   "$PRA_PYTHON" "$peers_dir/rooms.py" tsrir "$room" "$n" > "$tmp/one.txt"
   sed 's/ absorption=/ array=circular8.txt absorption=/' "$tmp/one.txt" > "$tmp/eight.txt"
   cols=()

@@ -28,6 +28,10 @@ have_pra() {
 have_kaldi() { [ -n "${KALDI_ROOT:-}" ] && [ -x "$KALDI_ROOT/src/featbin/wav-reverberate" ]; }
 have_rirgen() { [ -n "${RIR_GENERATOR:-}" ] && [ -x "$RIR_GENERATOR" ]; }
 pra_py() { PYTHONPATH=$PRA_PYTHONPATH "$PRA_PYTHON" "$@"; }
+# The value of `name=value` in a peer script's result line (pra_sim.py, RIR-Generator's CLI).
+pra_field() { sed -n "s/.*$1=\([0-9.]*\).*/\1/p"; }
+# The names of rooms.txt's rooms.
+room_names() { "$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'; }
 
 machine_line() {
   echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -21,8 +21,7 @@ echo
 echo "## Simulator time per RIR, 16 kHz (CPU s on one core; wall s per RIR with $P cores)"
 echo "| room | tsrir gas (ism+diffuse), 1.0 s | tsrir ism only, 1.0 s | pra ISM | x | pra hybrid | x | RIR-Generator, every image of 1.0 s | x vs gas | RIR-Generator, tsrir's image set (up to its transition time) | x vs ism |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
-pra_field() { sed -n "s/.*$1=\([0-9.]*\).*/\1/p"; }
-for room in $("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'); do
+for room in $(room_names); do
   read -r _ dim src mic t60 alpha beta ism_samples < <("$PRA_PYTHON" "$peers_dir/rooms.py" list | awk -v r="$room" '$1 == r')
   "$PRA_PYTHON" "$peers_dir/rooms.py" tsrir "$room" "$n" > "$tmp/$room.txt"
   for mode in 1 all; do
