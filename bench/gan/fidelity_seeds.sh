@@ -19,7 +19,7 @@ suite=$build/bin/gan-fidelity-suite
 [[ -x $suite ]] || { echo "missing $suite (ninja -C $build gan-fidelity-suite)" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, load: $(cut -d' ' -f1-3 /proc/loadavg); options: $args"
+echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(getconf _NPROCESSORS_ONLN) cores, load: $(cut -d' ' -f1-3 /proc/loadavg); options: $args"
 run_one() {  # kind seed
   local start end limit=() left
   if [[ -n $t_end ]]; then
