@@ -1,4 +1,5 @@
 // ts-rirgan-train: trains TS-RIRGAN (a 1-D CycleGAN) on unpaired real and synthetic RIR sets.
+#include <iostream>
 #include <string>
 
 #include "gan/ts_rirgan.h"
@@ -56,6 +57,10 @@ int main(int argc, char** argv) {
     const auto args = cli.parse(argc, argv, 1, 1);
     tsrir::install_output_policy(policy);
     o.model_dir = args[0];
+    if (o.print_settings) {
+      std::cout << tsrir::gan_settings_text(tsrir::settings_to_store(o));
+      return 0;
+    }
     const tsrir::GanTrainResult r = tsrir::train_ts_rirgan(o);
     return r.interrupted ? 130 : 0;
   });

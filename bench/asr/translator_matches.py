@@ -1,57 +1,44 @@
 #!/usr/bin/env python3
 """Checks that a ts-rirgan-train model dir is the model a command would train.
 
-Usage: translator_matches.py MODEL_DIR --program=ts-rirgan-train --steps=N [--config=FILE] [--key=value ...]
+Usage: translator_matches.py MODEL_DIR --program=ts-rirgan-train --steps=N [ts-rirgan-train options ...]
 
 run_table2.sh --import-translator uses it before it takes a model trained elsewhere (a GPU
-machine): every option's value (the program's defaults as its --help lists them, then the
---config file, then the command's options, later ones winning as in ts-rirgan-train) must equal the model's settings.txt entry of that name
-('-' read as '_'; numbers compared as numbers, to 1e-9 relative), and loss_log.csv must end at
-step N. ts-rirgan-train stores gain_weight as 0 for generators other than band_gain (it is
-unused there; src/gan/gan_train.cc), and so is it expected here. Options that settings.txt does not store (they do not shape the model, e.g.
---collapse-check-every) are listed and not compared. Exit status 0 when the model matches, 1 with
+machine). The program itself says what it would store: `ts-rirgan-train --print-settings` with
+the given options (its defaults, --config and the command resolved as in training, and whatever
+the chosen generator does not use set as training sets it). Every line must equal the model's
+settings.txt line of that key (numbers compared as numbers, to 1e-9 relative), except real_list
+and synthetic_list (the lists' absolute paths on the machine that trained it; listed, not
+compared); and loss_log.csv must end at step N. Exit status 0 when the model matches, 1 with
 every mismatch listed otherwise.
 """
 import math
 import os
-import re
 import subprocess
 import sys
+import tempfile
+
+MACHINE_PATHS = ("real_list", "synthetic_list")
 
 
-def help_defaults(program):
-    """The '--key arg (=value)' defaults of a Kaldi-style program's --help."""
-    text = subprocess.run([program, "--help"], capture_output=True, text=True).stdout
-    text += subprocess.run([program, "--help"], capture_output=True, text=True).stderr
-    return {m.group(1): m.group(2) for m in re.finditer(r"^\s+--([a-z0-9-]+) arg \(=([^)]*)\)", text, re.M)}
-
-
-def parse_options(args):
-    """--key=value arguments (and the lines of --config files) in order; later ones win."""
-    options = {}
-    for arg in args:
-        if not arg.startswith("--") or "=" not in arg:
-            raise SystemExit(f"translator_matches.py: expected --key=value, got '{arg}'")
-        key, value = arg[2:].split("=", 1)
-        if key == "config":
-            with open(value) as f:
-                lines = [ln.split("#", 1)[0].strip() for ln in f]
-            options.update(parse_options([ln for ln in lines if ln]))
-        else:
-            options[key] = value
-    return options
-
-
-def read_settings(path):
+def settings_of(text, where):
+    """A settings.txt text as {key: value}."""
     settings = {}
-    with open(path) as f:
-        for number, line in enumerate(f, 1):
-            parts = line.split(None, 1)
-            if len(parts) == 2:
-                settings[parts[0]] = parts[1].strip()
-            elif parts:
-                raise SystemExit(f"translator_matches.py: {path}:{number}: not 'key value': {line.strip()}")
+    for number, line in enumerate(text.splitlines(), 1):
+        parts = line.split(None, 1)
+        if parts:
+            settings[parts[0]] = parts[1].strip() if len(parts) == 2 else ""  # "real_list " without --real
     return settings
+
+
+def planned_settings(program, options):
+    """What `program` would store for a new model trained with `options`."""
+    with tempfile.TemporaryDirectory() as scratch:  # the model dir argument; --print-settings leaves it
+        run = subprocess.run([program, "--print-settings=true", *options, os.path.join(scratch, "model")],
+                             capture_output=True, text=True)
+    if run.returncode != 0:
+        raise SystemExit(f"translator_matches.py: {program} --print-settings failed:\n{run.stderr}")
+    return settings_of(run.stdout, f"{program} --print-settings")
 
 
 def same(a, b):
@@ -71,27 +58,29 @@ def last_step(path):
 def main(argv):
     if len(argv) < 2:
         raise SystemExit(__doc__)
-    model, given = argv[1], parse_options(argv[2:])
-    if "program" not in given or "steps" not in given:
+    model, program, steps, options = argv[1], None, None, []
+    for arg in argv[2:]:
+        if arg.startswith("--program="):
+            program = arg.split("=", 1)[1]
+        elif arg.startswith("--steps="):
+            steps = int(arg.split("=", 1)[1])
+        else:
+            options.append(arg)
+    if program is None or steps is None:
         raise SystemExit("translator_matches.py: --program and --steps are required")
-    options = help_defaults(given.pop("program"))
-    options.update(given)
-    steps = int(options.pop("steps"))
-    if options.get("generator") != "band_gain":
-        options["gain-weight"] = "0"
-    settings = read_settings(os.path.join(model, "settings.txt"))
-    problems, unchecked = [], []
-    for key, value in options.items():
-        stored = key.replace("-", "_")
-        if stored not in settings:
-            unchecked.append(key)
-        elif not same(settings[stored], value):
-            problems.append(f"{stored}: the model has {settings[stored]}, the command asks {value}")
+    wanted = planned_settings(program, options)
+    with open(os.path.join(model, "settings.txt")) as f:
+        stored = settings_of(f.read(), os.path.join(model, "settings.txt"))
+    problems = []
+    for key in sorted(set(wanted) | set(stored)):
+        if key in MACHINE_PATHS:
+            continue
+        if key not in stored or key not in wanted or not same(stored[key], wanted[key]):
+            problems.append(f"{key}: the model has {stored.get(key, '(none)')}, the command asks {wanted.get(key, '(none)')}")
     done = last_step(os.path.join(model, "loss_log.csv"))
     if done != steps:
         problems.append(f"steps: the model's loss_log.csv ends at step {done}, the command asks {steps}")
-    if unchecked:
-        print(f"translator_matches.py: not stored in settings.txt, not compared: {' '.join(unchecked)}", file=sys.stderr)
+    print(f"translator_matches.py: not compared (paths on the training machine): {' '.join(MACHINE_PATHS)}", file=sys.stderr)
     for p in problems:
         print(f"translator_matches.py: {model}: {p}", file=sys.stderr)
     return 1 if problems else 0

@@ -18,7 +18,7 @@ class AsrSettingsFile {
     // What a resumed run may change (asr.h): not settings.
     file_.Exclude({"epochs", "max-minutes", "num-threads", "device", "resume", "progress-interval"});
     // Added after models were written (main wrote it only when on): older files read as off.
-    file_.OmitWhenDefault({"sample-copies"});
+    file_.OmitWhenDefault({"sample-copies"}, file_.values());  // options_ are still the defaults
     file_.Rename("frame-length", "frame-length-ms");
     file_.Rename("frame-shift", "frame-shift-ms");
     file_.Rename("low-freq", "low-hz");

@@ -352,7 +352,10 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
     correction = lowpass_same(correction, lowpass_);
   }
   // The network works at the input's unit RMS, so this is the correction's energy re the input's.
-  last_correction_ms_ = (correction.to(torch::kFloat) * mask.to(torch::kFloat)).pow(2).mean({1, 2});
+  // Only a pass with gradients can be penalised: translation and no-grad passes skip the work.
+  last_correction_ms_ = torch::GradMode::is_enabled()
+                            ? (correction.to(torch::kFloat) * mask.to(torch::kFloat)).pow(2).mean({1, 2})
+                            : torch::Tensor();
   torch::Tensor added = correction.to(input.scalar_type()) * scale;
   if (!band_gain_) return input + added * mask;
   added = added + band_gain_->forward(input, features, onset, &last_log_gains_).to(input.scalar_type());

@@ -111,8 +111,9 @@ class GeneratorImpl : public torch::nn::Module {
   // (training penalises them, --gain-weight); undefined for the other kinds.
   const torch::Tensor& last_log_gains() const { return last_log_gains_; }
   // Residual and band-gain generators: the waveform correction's mean square per RIR [batch]
-  // over the last forward pass, in units of the input's mean square (training penalises it,
-  // --correction-weight); undefined for the original generator.
+  // over the last forward pass with gradients enabled, in units of the input's mean square
+  // (training penalises it, --correction-weight); undefined for the original generator and after
+  // a pass without gradients (translation).
   const torch::Tensor& last_correction_ms() const { return last_correction_ms_; }
 
  private:

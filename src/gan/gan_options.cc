@@ -48,6 +48,9 @@ void GanTrainOptions::Register(OptionsItf* opts) {
                  "Every N steps translate a fixed probe batch and stop with an error if the outputs are "
                  "silent or nearly equal across inputs (0 = never)");
   opts->Register("progress-interval", &progress_interval_s, "Seconds between progress lines on stderr");
+  opts->Register("print-settings", &print_settings,
+                 "Print the settings.txt that a new model trained with these options would store, on stdout, "
+                 "and train nothing (<model-dir> is not touched): to check a model trained elsewhere");
 }
 
 void GanTranslateOptions::Register(OptionsItf* opts) {

@@ -32,16 +32,20 @@ SettingsStyle file_style() {
   return style;
 }
 
-// A settings file bound to `settings`' fields.
-SettingsFile bound_file(GanSettings* settings) {
+// A settings file bound to `settings`' fields, every key written.
+SettingsFile every_key_file(GanSettings* settings) {
   SettingsFile file("tsrir-ts-rirgan-settings-v1", "a TS-RIRGAN settings file", file_style());
   settings->RegisterStored(&file);
   file.Order(kFileOrder);
-  // Added after models were written: left out at its default, so those files keep their bytes.
-  const double correction_weight = settings->correction_weight;
-  settings->correction_weight = GanSettings().correction_weight;
-  file.OmitWhenDefault({"correction-weight"});
-  settings->correction_weight = correction_weight;
+  return file;
+}
+
+// The model's settings file. Keys added after models were written are left out at their
+// defaults, so that those files keep their bytes.
+SettingsFile bound_file(GanSettings* settings) {
+  SettingsFile file = every_key_file(settings);
+  GanSettings defaults;
+  file.OmitWhenDefault({"correction-weight"}, every_key_file(&defaults).values());
   return file;
 }
 

@@ -363,16 +363,20 @@ class Trainer {
   // --correction-weight's on the waveform correction (residual and band-gain) and --gain-weight's
   // on the log gains (band-gain; their RMS in dB into *rms_db); zero where there is neither.
   torch::Tensor translation_penalty(const gan::Generator& g, int64_t rows, double* rms_db) const {
-    torch::Tensor penalty = torch::zeros({}, torch::kFloat);
+    torch::Tensor penalty;  // undefined until a term exists, so that it lives on the terms' device
+    const auto add = [&penalty](const torch::Tensor& term) { penalty = penalty.defined() ? penalty + term : term; };
     const torch::Tensor& c = g->last_correction_ms();
     if (c.defined() && m_.settings.correction_weight > 0) {
-      penalty = penalty.to(c.device()) + m_.settings.correction_weight * c.narrow(0, 0, rows).mean();
+      add(m_.settings.correction_weight * c.narrow(0, 0, rows).mean());
     }
     const torch::Tensor& v = g->last_log_gains();
-    if (!v.defined()) return penalty;
-    const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
-    if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
-    return penalty.to(mean_square.device()) + m_.settings.gain_weight * mean_square;
+    if (v.defined()) {
+      const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
+      if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
+      add(m_.settings.gain_weight * mean_square);
+    }
+    // None: a CPU zero, which adds to a loss on any device (a 0-dim tensor acts as a scalar).
+    return penalty.defined() ? penalty : torch::zeros({}, torch::kFloat);
   }
 
   // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
@@ -519,10 +523,9 @@ struct ModelDirPaths {
   std::string settings, checkpoint, log, curves;
 };
 
-// The settings this run trains with: the options' with the lists made absolute; on --resume
-// checked against the saved ones, whose initialisers are kept (a new learning rate, the one
-// setting a resumed run may change, is written back).
-GanSettings plan_settings(const GanTrainOptions& o, const ModelDirPaths& paths) {
+}  // namespace
+
+GanSettings settings_to_store(const GanTrainOptions& o) {
   GanSettings settings = o.model;
   // The original generator has no correction to band-limit: the option is the residual's only.
   if (settings.generator == GanGenerator::kOriginal) settings.correction_max_hz = 0.0;
@@ -533,6 +536,16 @@ GanSettings plan_settings(const GanTrainOptions& o, const ModelDirPaths& paths) 
   if (settings.generator == GanGenerator::kOriginal) settings.correction_weight = 0.0;
   settings.real_list = absolute_path(o.real_list);
   settings.synthetic_list = absolute_path(o.synthetic_list);
+  return settings;
+}
+
+namespace {
+
+// The settings this run trains with: settings_to_store's; on --resume checked against the saved
+// ones, whose initialisers are kept (a new learning rate, the one setting a resumed run may
+// change, is written back).
+GanSettings plan_settings(const GanTrainOptions& o, const ModelDirPaths& paths) {
+  GanSettings settings = settings_to_store(o);
   if (!o.resume) {
     if (fs::exists(paths.checkpoint)) {
       throw Error(o.model_dir + " already holds a checkpoint; use --resume to continue it, or another dir");

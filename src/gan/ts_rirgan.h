@@ -36,6 +36,7 @@ struct GanTrainOptions {
   // while their inputs are not.
   long long collapse_check_every = 100;
   double progress_interval_s = 10.0;
+  bool print_settings = false;  // print settings_to_store's settings.txt and train nothing
 
   void Register(OptionsItf* opts);  // gan_options.cc (model's options nested); the model dir is positional
 };
@@ -51,6 +52,11 @@ struct GanTrainResult {
 // Trains (or resumes) a model. Throws Error on bad input, on a model dir that does not match the
 // options, and on a non-finite loss (the last checkpoint written before it stays in place).
 GanTrainResult train_ts_rirgan(const GanTrainOptions& options);
+
+// The settings a new model trained with these options stores in settings.txt: the options' model
+// settings with what the chosen generator does not use set to 0, and the lists made absolute
+// (ts-rirgan-train --print-settings prints them as that file's text).
+GanSettings settings_to_store(const GanTrainOptions& options);
 
 // Output length/level conventions of the translation.
 struct GanTranslateOptions {

@@ -71,16 +71,16 @@ void SettingsFile::Rename(const std::string& name, const std::string& key) {
   throw Error("settings: no option '" + name + "' to rename (a program bug)");
 }
 
-void SettingsFile::OmitWhenDefault(const std::vector<std::string>& names) {
+void SettingsFile::OmitWhenDefault(const std::vector<std::string>& names, const SettingsValues& defaults) {
   for (const std::string& name : names) {
     auto it = std::find_if(settings_.begin(), settings_.end(), [&](const Setting& s) { return s.spec.name == name; });
     if (it == settings_.end() || it->spec.repeated || !it->spec.get) {
       throw Error("settings: no single-valued option '" + name + "' to omit when default (a program bug)");
     }
-    const std::vector<std::string> now = it->spec.get(style_.double_digits);
-    if (now.size() != 1) throw Error("settings: option '" + name + "' has no default to omit (a program bug)");
+    const auto value = defaults.find(it->key);
+    if (value == defaults.end()) throw Error("settings: no default given for '" + name + "' (a program bug)");
     it->omit_when_default = true;
-    it->default_value = now[0];
+    it->default_value = value->second;
   }
 }
 

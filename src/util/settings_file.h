@@ -52,11 +52,11 @@ class SettingsFile : public OptionsItf {
   void Exclude(const std::vector<std::string>& names);
   // Option `name` is stored under `key` (keys of files written before settings followed options).
   void Rename(const std::string& name, const std::string& key);
-  // These options are written only when their value differs from the one they have now (call it
-  // on default-constructed options), and a file without them gives them that value, even with
-  // require_all: an option added to a settings struct then leaves the bytes of files written
-  // before it, and those files still read.
-  void OmitWhenDefault(const std::vector<std::string>& names);
+  // These options are written only when their value differs from their entry in `defaults` (the
+  // values() of a file bound to default-constructed options), and a file without them gives them
+  // that value, even with require_all: an option added to a settings struct then leaves the bytes
+  // of files written before it, and those files still read.
+  void OmitWhenDefault(const std::vector<std::string>& names, const SettingsValues& defaults);
   // Unsorted style: these keys first, in this order (the rest follow in registration order).
   void Order(const std::vector<std::string>& keys);
 

@@ -356,23 +356,31 @@ TEST(GanNetworks, ResidualGeneratorStartsNearTheIdentity) {
 
 // --correction-weight's statistic: the mean square, per RIR, of what the residual generator added
 // (output - input, read off the output, not the network's inner tensor) after the onset, divided by
-// the input's mean square; zero before the onset, and undefined for the original generator.
+// the input's mean square; zero before the onset. Undefined for the original generator and after a
+// pass without gradients (translation, which nothing penalises).
 TEST(GanNetworks, CorrectionMeanSquareIsWhatTheOutputAddedReTheInput) {
   torch::manual_seed(13);
   Generator g(spec_of(4, GanDecoder::kLight, GanGenerator::kResidual), GanInit::kHe);
-  torch::NoGradGuard no_grad;
-  for (auto& p : g->parameters()) p.normal_(0, 0.05);
+  {
+    torch::NoGradGuard no_grad;
+    for (auto& p : g->parameters()) p.normal_(0, 0.05);
+  }
   torch::Tensor x = torch::zeros({2, 1, 16384});
   x[0][0][200] = 1.0, x[1][0][4000] = 0.5;  // onsets at different samples, different levels
   x.narrow(2, 4100, 8000).normal_(0, 0.01);
-  const torch::Tensor added = (g->forward(x) - x).to(torch::kDouble).flatten(1);
+  const torch::Tensor added = (g->forward(x) - x).detach().to(torch::kDouble).flatten(1);
   const torch::Tensor input_ms = x.to(torch::kDouble).flatten(1).pow(2).mean(1);
   const torch::Tensor expected = added.pow(2).mean(1) / input_ms;
-  const torch::Tensor got = g->last_correction_ms().to(torch::kDouble);
+  const torch::Tensor got = g->last_correction_ms().detach().to(torch::kDouble);
   ASSERT_EQ(got.size(0), 2);
   for (int i = 0; i < 2; ++i) {
     EXPECT_GT(expected[i].item<double>(), 1e-8);
     EXPECT_NEAR(got[i].item<double>(), expected[i].item<double>(), 1e-3 * expected[i].item<double>());
+  }
+  {
+    torch::NoGradGuard no_grad;
+    g->forward(x);
+    EXPECT_FALSE(g->last_correction_ms().defined());
   }
   Generator original(spec_of(4, GanDecoder::kLight), GanInit::kHe);
   original->forward(x);

@@ -137,12 +137,12 @@ TEST(SettingsFile, MissingKeysKeepTheFieldOrAreErrors) {
 TEST(SettingsFile, OmittedWhenDefaultKeepsOlderFilesBytesAndReadable) {
   SettingsStyle strict = sorted_style();
   strict.require_all = true;
+  ModelSettings defaults;
   auto omitting = [&](ModelSettings* m) {
     SettingsFile file = file_for(m, strict);
-    file.OmitWhenDefault({"residual"});
+    file.OmitWhenDefault({"residual"}, file_for(&defaults, strict).values());
     return file;
   };
-  ModelSettings defaults;
   const std::string without = omitting(&defaults).text();
   EXPECT_EQ(without.find("residual"), std::string::npos);
   EXPECT_EQ(omitting(&defaults).values().count("residual"), 0u);
@@ -153,9 +153,8 @@ TEST(SettingsFile, OmittedWhenDefaultKeepsOlderFilesBytesAndReadable) {
   EXPECT_EQ(without, all_lines);
 
   ModelSettings on;
-  SettingsFile on_file = omitting(&on);  // made on default options, as the doc asks; then set
   on.residual = true;
-  const std::string with = on_file.text();
+  const std::string with = omitting(&on).text();  // the defaults come from their own struct
   EXPECT_NE(with.find("\nresidual true\n"), std::string::npos);
 
   ModelSettings read;
@@ -166,8 +165,10 @@ TEST(SettingsFile, OmittedWhenDefaultKeepsOlderFilesBytesAndReadable) {
   EXPECT_FALSE(read.residual);
   EXPECT_EQ(error_of([&] { file_for(&read, strict).parse(without, "old.txt"); }),
             "old.txt: settings lack 'residual'");  // without OmitWhenDefault: an error
-  EXPECT_EQ(error_of([&] { file_for(&read).OmitWhenDefault({"list"}); }),
+  EXPECT_EQ(error_of([&] { file_for(&read).OmitWhenDefault({"list"}, {}); }),
             "settings: no single-valued option 'list' to omit when default (a program bug)");
+  EXPECT_EQ(error_of([&] { file_for(&read).OmitWhenDefault({"residual"}, {}); }),
+            "settings: no default given for 'residual' (a program bug)");
 }
 
 TEST(SettingsFile, BadFilesNameFileAndLine) {
