@@ -20,9 +20,13 @@
 #
 # Usage: bench/asr/run_table2.sh [--arms "paper reverb"] [--seeds "0 1 2 3 4"] [--sets "..."]
 #          [--jobs 2] [--out DIR] [--gan-steps 2000] [--train-copies 3] [--import-translator NAME=DIR]
+#          [--corpus-seed 0]
 # --import-translator paper=DIR (or default=DIR) uses a model trained elsewhere with this script's
 # command, e.g. on a GPU by bench/asr/table2_translator_gpu.sh, after checking that its settings and
 # step count are the ones this script would train (bench/asr/translator_matches.py).
+# --corpus-seed N (N > 0) draws another TTS corpus (make_tts_corpus.sh --seed N: other sentences,
+# rates and pitches for the same voices, train and test) into <out>/corpus_seedN, and trains and
+# tests each arm on it in <out>/<arm>_corpusN: the same RIR sets and translators, a second corpus draw.
 # e.g. the instrument check alone: bench/asr/run_table2.sh --arms reverb --sets "real ctl_t60x0.5 ctl_t60x0.33"
 # Default out: egs/librispeech_farfield/demo/table2. A piece stopped by Ctrl-C resumes where it
 # stopped (a model in training resumes from its last epoch).
@@ -37,12 +41,14 @@ jobs=2
 out=$recipe/demo/table2
 gan_steps=2000
 train_copies=3
+corpus_seed=0
 imports=()
 cmdline="$0 $*"
 while [ $# -gt 0 ]; do
   case $1 in
     --sets) sets=$2 ;; --arms) arms=$2 ;; --seeds) seeds=$2 ;; --jobs) jobs=$2 ;; --out) out=$2 ;;
     --gan-steps) gan_steps=$2 ;; --train-copies) train_copies=$2 ;; --import-translator) imports+=("$2") ;;
+    --corpus-seed) corpus_seed=$2 ;;
     *) echo "$0: unknown option $1" >&2; exit 1 ;;
   esac
   shift 2
@@ -57,6 +63,7 @@ for p in rir-perturb ts-rirgan-train gas-to-real rir-eq asr-train asr-decode rev
 done
 snrs_of() { case $1 in paper) echo 1..2 ;; reverb) echo 15..25 ;; *) die "unknown arm '$1' (paper | reverb)" ;; esac; }
 for a in $arms; do snrs_of "$a" >/dev/null; done
+[[ "$corpus_seed" =~ ^[0-9]+$ ]] || die "--corpus-seed must be a number >= 0, got '$corpus_seed'"
 demo_rirs=$recipe/demo/data/rirs
 rirs=$out/rirs
 machine="$(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
@@ -191,11 +198,15 @@ prepare_rirs() {
   fi
 }
 
-# The corpus: make_tts_corpus.sh's defaults (24 training voices x 50 utterances, 6 held-out voices x 40).
-corpus_opts=""
+# The corpus: make_tts_corpus.sh's defaults (24 training voices x 50 utterances, 6 held-out voices x 40),
+# drawn with --corpus-seed (0: the table's own corpus and arm dirs, as before the option).
+corpus_opts=""; corpus_dir=$out/corpus; arm_suffix=""
+if [ "$corpus_seed" != 0 ]; then
+  corpus_opts="--seed $corpus_seed"; corpus_dir=$out/corpus_seed$corpus_seed; arm_suffix=_corpus$corpus_seed
+fi
 
 run_arm() {  # <arm>
-  local arm=$1 d=$out/$1
+  local arm=$1 d=$out/$1$arm_suffix
   mkdir -p "$d"
   local dose="real ctl_t60x0.5 ctl_t60x0.33|real ctl_t60x2|real ctl_drr-6|real ctl_drr+6|real ctl_lf+10" chains="" c
   # Only chains whose sets are all in this piece.
@@ -207,7 +218,7 @@ run_arm() {  # <arm>
   done
   log "arm $arm (SNR $(snrs_of "$arm") dB): sets $sets; seeds $seeds"
   local_args=(--train-sets "$sets" --seeds "$seeds" --jobs "$jobs" --snrs "$(snrs_of "$arm")"
-              --corpus-dir "$out/corpus" --corpus-opts "$corpus_opts" --train-copies "$train_copies"
+              --corpus-dir "$corpus_dir" --corpus-opts "$corpus_opts" --train-copies "$train_copies"
               --real-speech "$root/../shared/data/speech" --dose "$chains" --section "$d/table2.md")
   local/asr/run_proxy.sh "${local_args[@]}" "$rirs" demo/data/noise/noise_list "$d/data" "$d/exp"
 }
