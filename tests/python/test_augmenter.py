@@ -238,7 +238,8 @@ class MultichannelFarField(unittest.TestCase):
     """--multi-channel-output=true with a microphone array's RIRs (rir-simulate, 3 microphones):
     one 3-channel recording per utterance; channel c is what wav-reverberate makes with RIR
     channel c alone (--rir-channel=c, the mono path); the pipes, --write-wavs (in memory and
-    streamed) and the Augmenter agree; noises are refused with a clear error."""
+    streamed) and the Augmenter agree, noises included (a 3-channel isotropic noise, a point
+    source through the array's RIR); a mono isotropic noise is refused with a clear error."""
 
     @classmethod
     def setUpClass(cls):
@@ -285,15 +286,41 @@ class MultichannelFarField(unittest.TestCase):
                                           "--impulse-response=" + d + "/rirs/arr.wav", "%s/%s.wav" % (d, utt), "-"]))
                 np.testing.assert_array_equal(x[c], mono[0], "%s channel %d" % (utt, c))
 
-    def test_noises_and_multichannel_speech_are_clear_errors(self):
+    def test_noises_per_channel_pipes_and_augmenter_agree(self):
+        d = self.dir
+        iso = np.array([0.05 * np.sin(0.01 * (c + 1) * np.arange(7000)) for c in range(3)])
+        write_wav16(d + "/iso3.wav", iso, FS)
+        write_wav16(d + "/ps.wav", speech_like(3000, FS, 77) * 0.3, FS)
+        write_text(d + "/noise_list3", "--noise-id iso3 --noise-type isotropic --room-linkage arr %s/iso3.wav\n"
+                   "--noise-id ps --noise-type point-source --bg-fg-type foreground %s/ps.wav\n" % (d, d))
+        noisy = self.base + ["--noise-set-parameters", d + "/noise_list3", "--max-noises-per-recording", "1"]
+        run([program("reverberate-data")] + noisy + [d + "/in", d + "/noisy"])
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], seed=3,
+                              noise_set_parameters=[d + "/noise_list3"], max_noises_per_recording=1,
+                              multi_channel_output=True)
+        for utt, pipe in read_scp(d + "/noisy/wav.scp").items():
+            self.assertIn("iso3.wav", pipe)
+            self.assertIn("ps.wav", pipe)
+            piped = run_bytes(["sh", "-c", pipe.rstrip().rstrip("|")])
+            y, fs = aug.augment(utt)
+            self.assertEqual(y.shape[0], 3)
+            self.assertEqual(tsrir.encode_wav(y, fs), piped, utt)
+
+    def test_mono_noise_and_multichannel_speech_are_clear_errors(self):
         d = self.dir
         write_wav16(d + "/noise.wav", 0.1 * np.ones(100), FS)
-        write_text(d + "/noise_list", "--noise-id n --noise-type isotropic %s/noise.wav\n" % d)
+        write_text(d + "/noise_list", "--noise-id n --noise-type isotropic --room-linkage arr %s/noise.wav\n" % d)
         with self.assertRaises(Exception) as caught:
             run([program("reverberate-data")] + self.base + ["--noise-set-parameters", d + "/noise_list",
                                                               d + "/in", d + "/bad"])
+        self.assertIn("has 1 channel(s) but recording", str(caught.exception))
         self.assertIn("--multi-channel-output", str(caught.exception))
         self.assertFalse(os.path.exists(d + "/bad"))
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"],
+                              noise_set_parameters=[d + "/noise_list"], multi_channel_output=True)
+        with self.assertRaises(Exception) as caught:
+            aug.augment("u0")
+        self.assertIn("has 1 channel(s), but microphone 1 of the array needs its own", str(caught.exception))
         aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], multi_channel_output=True)
         with self.assertRaises(ValueError) as caught:
             aug(np.zeros((4, 8000), dtype=np.float32), FS, "u0")
