@@ -15,6 +15,7 @@
 #include <fstream>
 
 #include "dsp/fft.h"
+#include "sim/extension_components.h"
 #include "sim/mic_array.h"
 #include "sim_test_util.h"
 #include "util/error.h"
@@ -144,6 +145,39 @@ TEST(SimArray, MicrophonePolarPatternsScaleTheDirectSoundByArrivalAngle) {
 TEST(SimArray, SourcePolarPatternsScaleTheDirectSoundByDepartureAngle) {
   check_pattern_gains(false, 0.0);
   check_pattern_gains(false, -60.0);
+}
+
+// "+directivity" with a source pattern (sim/source_directivity.h): the index is the source's
+// on-axis total and the pattern its shape, so the direct sound is
+//   g_mic(arrival) g_src(departure) 10^(DI / 20) sqrt(alpha^2 + (1 - alpha)^2 / 3) / (4 pi r),
+// the last root being 1 / sqrt(Q) of the first-order pattern (its textbook directivity factor).
+// 12 microphones (subcardioid, one axis) on a 1 m circle, four source patterns aimed at -60 deg.
+TEST(SimArray, DirectivityIndexIsTheSourcesOnAxisTotalWithItsPatternsShape) {
+  register_extension_components();
+  const Vec3 src{3.5, 3.5, 1.7};
+  std::string mic_list;
+  std::vector<double> azimuths;
+  for (int k = 0; k < 12; ++k) {
+    azimuths.push_back((15.0 + 30.0 * k) * kPi / 180.0);
+    mic_list += (k ? ";" : "") + vec_text({src[0] + std::cos(azimuths[k]), src[1] + std::sin(azimuths[k]), src[2]});
+  }
+  const double di_db = 6.0, src_axis = -60.0 * kPi / 180.0, mic_axis = 30.0 * kPi / 180.0;
+  std::string model = "ism:transition_ms=40+directivity:";
+  for (const char* band : {"62.5", "125", "250", "500", "1000", "2000", "4000", "8000"})
+    model += std::string(model.back() == ':' ? "" : ",") + "di" + band + "=6";
+  for (const PatternCase& p : {kPatterns[0], kPatterns[2], kPatterns[3], kPatterns[4]}) {
+    const std::string line = "d room=7,7,3.4 src=" + vec_text(src) + " mic=" + mic_list + " src_pattern=" + p.name +
+                             " src_dir=-60,0 mic_pattern=subcardioid mic_dir=30,0 absorption=0.9 scattering=0";
+    const std::vector<Signal> rir = render_array(line, model, 0.05);
+    const double inverse_sqrt_q = std::sqrt(p.alpha * p.alpha + (1.0 - p.alpha) * (1.0 - p.alpha) / 3.0);
+    for (size_t m = 0; m < azimuths.size(); ++m) {
+      const double g_src = p.alpha + (1.0 - p.alpha) * std::cos(azimuths[m] - src_axis);
+      const double g_mic = 0.75 + 0.25 * std::cos(azimuths[m] + kPi - mic_axis);
+      const double expected = g_mic * g_src * std::pow(10.0, di_db / 20.0) * inverse_sqrt_q / (4.0 * kPi);
+      const double amp = fitted_amplitude(rir[m].samples, 1.0 / kC * kFs);
+      EXPECT_NEAR(amp, expected, 0.01 / (4.0 * kPi)) << p.name << " mic " << m;
+    }
+  }
 }
 
 TEST(SimArray, PatternsApplyToReflectionsByTheirOwnDirection) {
