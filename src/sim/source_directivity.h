@@ -30,8 +30,9 @@ namespace tsrir::sim {
 // Parameter key of a band's directivity index: "di62.5", "di125", ...
 std::string directivity_key(int band);
 // The factor this component gives the direct sound that "ism" rendered for `room`, for an index of
-// `di_db`: 10^(di_db / 20) / sqrt(Q_p) with Q_p the source pattern's directivity factor.
-double directivity_direct_gain(double di_db, const RoomSpec& room);
+// `di_db` in octave band `band`: 10^(di_db / 20) / sqrt(Q_p) with Q_p the directivity factor of the
+// source's pattern in that band (source_pattern_in_band).
+double directivity_direct_gain(double di_db, const RoomSpec& room, int band);
 
 class SourceDirectivityComponent : public ModelComponent {
  public:

@@ -180,6 +180,39 @@ TEST(SimArray, DirectivityIndexIsTheSourcesOnAxisTotalWithItsPatternsShape) {
   }
 }
 
+// A loudspeaker's pattern per octave band (src_pattern_bands=): omni up to 500 Hz, cardioid from
+// 1 kHz. The octave filters are complementary with gain exactly 1 around each band's centre
+// (sim/octave_filters.h), so the direct sound's spectrum at a centre frequency is that band's gain,
+// 0.5 + 0.5 cos(theta) or 1, over 4 pi r. Three microphones 1 m away at 0, 90 and 180 degrees from
+// the source's axis, in a room whose first reflection comes after the rendered images.
+TEST(SimArray, LoudspeakerPatternsPerBandScaleEachBandOfTheDirectSound) {
+  register_extension_components();
+  const std::string line =
+      "ls room=60,60,60 src=30,30,30 mic=31,30,30;30,31,30;29,30,30 src_dir=0,0 "
+      "src_pattern_bands=omni,omni,omni,omni,cardioid,cardioid,cardioid,cardioid absorption=0.9 scattering=0";
+  const std::vector<Signal> rir = render_array(line, "ism:transition_ms=100", 0.5);
+  const double theta[] = {0.0, kPi / 2.0, kPi};
+  const size_t nfft = 16000;  // 1 Hz bins
+  for (size_t m = 0; m < 3; ++m) {
+    const auto spectrum = rfft(rir[m].samples, nfft);
+    for (double f : {125.0, 250.0, 2000.0, 4000.0}) {
+      const double gain = f < 700.0 ? 1.0 : 0.5 + 0.5 * std::cos(theta[m]);
+      const double expected = gain / (4.0 * kPi);
+      EXPECT_NEAR(std::abs(spectrum[static_cast<size_t>(f)]), expected, 0.02 / (4.0 * kPi)) << "mic " << m << " " << f;
+    }
+  }
+  // The same patterns in every band are src_pattern's render; both keys at once are refused.
+  const std::string every = "e room=7,7,3.4 src=3,3,1.7 mic=4,3.5,1.7 src_dir=30,0 absorption=0.5 ";
+  const Signal one = render_array(every + "src_pattern=hypercardioid", "gas", 0.2, 3)[0];
+  const Signal bands = render_array(every + "src_pattern_bands=hypercardioid,hypercardioid,hypercardioid,"
+                                    "hypercardioid,hypercardioid,hypercardioid,hypercardioid,hypercardioid", "gas", 0.2, 3)[0];
+  EXPECT_EQ(one.samples, bands.samples);
+  EXPECT_THROW(test::room_from_line(every + "src_pattern=omni src_pattern_bands=omni,omni,omni,omni,omni,omni,omni,omni"),
+               Error);
+  EXPECT_THROW(test::room_from_line(every + "src_pattern_bands=omni,cardioid"), Error);
+  EXPECT_THROW(test::room_from_line(every + "src_pattern_bands=omni,omni,omni,omni,omni,omni,omni,loud"), Error);
+}
+
 TEST(SimArray, PatternsApplyToReflectionsByTheirOwnDirection) {
   // One reflection isolated: a figure-8 microphone whose axis is vertical hears nothing of the
   // direct sound (horizontal arrival) and the floor reflection at its elevation, with the sign
