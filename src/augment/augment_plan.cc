@@ -124,6 +124,8 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   if (!options.reverb.normalize_output) out += " --normalize-output=false";
   if (options.multi_channel_output) out += " --multi-channel-output=true";
   if (plan.rir_channel >= 0) out += " --rir-channel=" + std::to_string(plan.rir_channel);
+  // A split entry takes the same channel of its noises (wav_reverberate.h's array rules).
+  if (plan.rir_channel >= 0 && !plan.noises.empty()) out += " --noise-channel=" + std::to_string(plan.rir_channel);
   if (options.sample_rate_hz > 0) out += " --sample-rate=" + format_double(options.sample_rate_hz);
   if (plan.rir >= 0)
     out += " " + shell_quote("--impulse-response=" + sources.rirs[static_cast<size_t>(plan.rir)].rxfilename);

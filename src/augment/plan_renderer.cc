@@ -53,38 +53,63 @@ std::shared_ptr<const PlanRenderer::RirChannels> PlanRenderer::rir_channels(long
   });
 }
 
-std::shared_ptr<const PreparedRir> PlanRenderer::speech_rir(const RecordingPlan& plan, double rate) {
-  if (plan.rir_channel < 0) return rir(plan.rir, rate);
-  const std::shared_ptr<const RirChannels> channels = rir_channels(plan.rir, rate);
+std::shared_ptr<const PreparedRir> PlanRenderer::rir_channel(long index, double rate, int channel,
+                                                             const std::string& user) {
+  const std::shared_ptr<const RirChannels> channels = rir_channels(index, rate);
   if (!channels) return nullptr;
-  if (static_cast<size_t>(plan.rir_channel) >= channels->size()) {
-    const RirChoice& choice = sources_.rirs[static_cast<size_t>(plan.rir)];
+  if (static_cast<size_t>(channel) >= channels->size()) {
+    const RirChoice& choice = sources_.rirs[static_cast<size_t>(index)];
     throw Error(choice.where + " (RIR '" + choice.id + "'): has " + std::to_string(channels->size()) +
-                " channel(s), no channel " + std::to_string(plan.rir_channel));
+                " channel(s), no channel " + std::to_string(channel) + user);
   }
   // Shares ownership of all the RIR's channels (aliasing constructor).
-  return std::shared_ptr<const PreparedRir>(channels, (*channels)[static_cast<size_t>(plan.rir_channel)].get());
+  return std::shared_ptr<const PreparedRir>(channels, (*channels)[static_cast<size_t>(channel)].get());
+}
+
+std::shared_ptr<const PreparedRir> PlanRenderer::speech_rir(const RecordingPlan& plan, double rate) {
+  if (plan.rir_channel < 0) return rir(plan.rir, rate);
+  return rir_channel(plan.rir, rate, plan.rir_channel, "");
 }
 
 std::vector<std::vector<float>> PlanRenderer::render_channels(const std::vector<float>& speech, double rate,
                                                               const RecordingPlan& plan) {
-  if (!plan.noises.empty()) throw Error("multichannel output adds no noises, but the plan has some");
   const std::shared_ptr<const RirChannels> rirs = rir_channels(plan.rir, rate);
-  if (!rirs) return {reverberate_channel(speech, rate, nullptr, {}, reverb_)};
+  if (!rirs) return {render(speech, rate, plan)};
   std::vector<std::vector<float>> out;
-  for (const auto& rir : *rirs) out.push_back(reverberate_channel(speech, rate, rir.get(), {}, reverb_));
+  for (size_t c = 0; c < rirs->size(); ++c) {
+    out.push_back(reverberate_channel(speech, rate, (*rirs)[c].get(),
+                                      additive_signals(plan, rate, static_cast<int>(c)), reverb_));
+  }
   return out;
 }
 
-std::vector<AdditiveSignal> PlanRenderer::additive_signals(const RecordingPlan& plan, double rate) {
+std::shared_ptr<const std::vector<float>> PlanRenderer::noise_channel(long index, double rate, int channel) {
+  const NoiseChoice& choice = sources_.noises[static_cast<size_t>(index)];
+  const std::string what = choice.where + " (noise '" + choice.id + "')";
+  const std::shared_ptr<const std::vector<std::vector<float>>> channels =
+      noise_channels_.get({index, rate}, [&] { return read_channels_at_rate(choice.rxfilename, rate, what); });
+  if (static_cast<size_t>(channel) >= channels->size())
+    throw Error(what + ": has " + std::to_string(channels->size()) + " channel(s), but microphone " +
+                std::to_string(channel) + " of the array needs its own: a noise added without an RIR needs one " +
+                "channel per channel of the speech's RIR (as wav-reverberate --multi-channel-output)");
+  return std::shared_ptr<const std::vector<float>>(channels, &(*channels)[static_cast<size_t>(channel)]);
+}
+
+std::vector<AdditiveSignal> PlanRenderer::additive_signals(const RecordingPlan& plan, double rate, int channel) {
   std::vector<AdditiveSignal> additive;
   for (const PlannedNoise& planned : plan.noises) {
     const NoiseChoice& choice = sources_.noises[static_cast<size_t>(planned.noise)];
-    std::shared_ptr<const std::vector<float>> noise = noises_.get({planned.noise, rate}, [&] {
-      const std::string what = choice.where + " (noise '" + choice.id + "')";
-      return first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what);
-    });
-    const std::shared_ptr<const PreparedRir> noise_rir = rir(planned.rir, rate);
+    const std::string what = choice.where + " (noise '" + choice.id + "')";
+    std::shared_ptr<const std::vector<float>> noise;
+    std::shared_ptr<const PreparedRir> noise_rir;
+    if (channel < 0 || planned.rir >= 0) {
+      noise = noises_.get({planned.noise, rate},
+                          [&] { return first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what); });
+      noise_rir = channel < 0 ? rir(planned.rir, rate)
+                              : rir_channel(planned.rir, rate, channel, " for the point-source noise " + what);
+    } else {
+      noise = noise_channel(planned.noise, rate, channel);
+    }
     additive.push_back(planned_noise_signal(planned, noise, noise_rir.get(), rate));
   }
   return additive;
@@ -92,7 +117,7 @@ std::vector<AdditiveSignal> PlanRenderer::additive_signals(const RecordingPlan& 
 
 std::vector<float> PlanRenderer::render(const std::vector<float>& speech, double rate, const RecordingPlan& plan) {
   const std::shared_ptr<const PreparedRir> rir = speech_rir(plan, rate);
-  const std::vector<AdditiveSignal> additive = additive_signals(plan, rate);
+  const std::vector<AdditiveSignal> additive = additive_signals(plan, rate, plan.rir >= 0 ? plan.rir_channel : -1);
   return reverberate_channel(speech, rate, rir.get(), additive, reverb_);
 }
 

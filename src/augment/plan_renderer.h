@@ -27,15 +27,20 @@ class PlanRenderer {
   // The RIR the plan's speech is reverberated with: its channel plan.rir_channel (from
   // --split-channels), else channel 0; null without one.
   std::shared_ptr<const PreparedRir> speech_rir(const RecordingPlan& plan, double rate);
-  // The plan's noises as they are added to the reverberant speech.
-  std::vector<AdditiveSignal> additive_signals(const RecordingPlan& plan, double rate);
+  // The plan's noises as they are added to the reverberant speech. `channel` < 0: the mono form
+  // (channel 0 of every noise and noise RIR, with rate_policy.h's warning); else as microphone
+  // `channel` of an array receives them (wav-reverberate's multichannel rules, wav_reverberate.h):
+  // a noise with an RIR is its channel 0 through that RIR's channel `channel`, one without is its
+  // own channel `channel` (it must have one per microphone).
+  std::vector<AdditiveSignal> additive_signals(const RecordingPlan& plan, double rate, int channel = -1);
   // The far-field copy of `speech` (one channel at `rate`), before any encoding.
   std::vector<float> render(const std::vector<float>& speech, double rate, const RecordingPlan& plan);
   // Every channel of RIR `index` (a microphone array's) at `rate` (null for -1).
   using RirChannels = std::vector<std::unique_ptr<const PreparedRir>>;
   std::shared_ptr<const RirChannels> rir_channels(long index, double rate);
   // --multi-channel-output: one far-field channel per channel of the plan's RIR (one channel when
-  // there is none), as wav-reverberate --multi-channel-output=true; the plan must have no noises.
+  // there is none), as wav-reverberate --multi-channel-output=true: channel c = render() of the
+  // plan split to channel c (additive_signals(plan, rate, c), SNR against channel c's speech).
   std::vector<std::vector<float>> render_channels(const std::vector<float>& speech, double rate,
                                                   const RecordingPlan& plan);
   const ReverbOptions& reverb() const { return reverb_; }
@@ -63,6 +68,11 @@ class PlanRenderer {
   LoadOnce<PreparedRir> rirs_;
   LoadOnce<RirChannels> rir_channels_;
   LoadOnce<std::vector<float>> noises_;
+  LoadOnce<std::vector<std::vector<float>>> noise_channels_;
+  // Channel `channel` of noise `index` / of RIR `index` at `rate`, or an error naming the file,
+  // its channel count and (`user`) what needed the channel.
+  std::shared_ptr<const std::vector<float>> noise_channel(long index, double rate, int channel);
+  std::shared_ptr<const PreparedRir> rir_channel(long index, double rate, int channel, const std::string& user);
 };
 
 }  // namespace tsrir

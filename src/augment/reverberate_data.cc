@@ -173,11 +173,13 @@ void ReverberateDataOptions::Register(OptionsItf* opts) {
   opts->Register("multi-channel-output", &multi_channel_output,
                  "one output channel per channel of the recording's RIR (a microphone array's, e.g. from rir-simulate "
                  "mic=x,y,z;x,y,z): one multichannel recording per utterance (wav-reverberate "
-                 "--multi-channel-output=true); no noises are added in this mode");
+                 "--multi-channel-output=true); a point-source noise goes through each channel of its RIR, an isotropic "
+                 "noise needs one channel per RIR channel (a mono one is refused, as Kaldi does), SNR per channel");
   opts->Register("split-channels", &split_channels,
                  "one recording per channel of the recording's RIR instead (the per-channel form): ids <id>.CH<c> "
-                 "(c from 1), pipes with wav-reverberate --rir-channel=<c-1>, reco2file_and_channel '<id> <id> A'; "
-                 "no noises are added in this mode");
+                 "(c from 1), pipes with wav-reverberate --rir-channel=<c-1> (and --noise-channel=<c-1>), "
+                 "reco2file_and_channel '<id> <id> A'; entry c equals channel c of --multi-channel-output, noises "
+                 "included");
   opts->Register("include-original-data", &include_original_data, "also keep the originals as copy 0");
   CommonOptions(opts).seed(&random_seed, "every draw");
   opts->Register("sample-rate", &source_sampling_rate_hz,
@@ -222,19 +224,10 @@ ReverberatePlan to_plan(const ReverberateDataOptions& o, OptionSpelling spelling
   check_probability(o.pointsource_noise_addition_probability, "pointsource-noise-addition-probability", spelling);
   check_not_negative(o.max_noises_per_minute, "max-noises-per-minute", spelling);
   check_not_negative(o.max_noises_per_recording, "max-noises-per-recording", spelling);
-  if (o.multi_channel_output && !o.noise_set_parameters.empty()) {
-    throw Error(spelled("multi-channel-output", spelling) + " adds no noises (each would need as many channels as "
-                "the recording's RIR): drop " + spelled("noise-set-parameters", spelling) +
-                ", or add noise per channel afterwards");
-  }
   if (o.split_channels && o.multi_channel_output) {
     throw Error(spelled("split-channels", spelling) + " and " + spelled("multi-channel-output", spelling) +
                 " are two forms of the same data (one recording per channel, or one multichannel recording): "
                 "choose one");
-  }
-  if (o.split_channels && !o.noise_set_parameters.empty()) {
-    throw Error(spelled("split-channels", spelling) + " adds no noises (each channel would need its own channel "
-                "of every noise): drop " + spelled("noise-set-parameters", spelling));
   }
   if (o.source_sampling_rate_hz < 0) {
     throw Error(spelled("sample-rate", spelling) + " must be > 0 Hz (or 0: the first recording's), got " +
@@ -323,6 +316,40 @@ std::vector<RecordingPlan> split_into_channels(std::vector<RecordingPlan> plans,
   return out;
 }
 
+// Multichannel far-field data with noises (--multi-channel-output or --split-channels), checked
+// before anything is written, from the files' headers: each reverberated recording with an
+// N-channel RIR needs an N-channel RIR for each point-source noise (the same array in the same
+// room) and N channels in each noise added without an RIR (isotropic, or --point-source-noise-rir
+// none): wav-reverberate --multi-channel-output's rule, which Kaldi's binary asserts. A mono
+// background noise is refused, as Kaldi refuses it, rather than copied to every microphone (which
+// would make a fully coherent "diffuse" noise).
+void check_array_noise_channels(const std::vector<RecordingPlan>& plans, const AugmentSources& sources) {
+  std::map<std::string, int> channels_of;
+  auto channels = [&](const std::string& rx, const std::string& where) {
+    auto it = channels_of.find(rx);
+    if (it == channels_of.end()) it = channels_of.emplace(rx, rx_audio_header(rx, false, where).channels).first;
+    return it->second;
+  };
+  for (const RecordingPlan& recording : plans) {
+    if (recording.rir < 0 || recording.noises.empty()) continue;
+    const RirChoice& rir = sources.rirs[static_cast<size_t>(recording.rir)];
+    const int n = channels(rir.rxfilename, rir.where + " (RIR '" + rir.id + "')");
+    for (const PlannedNoise& noise : recording.noises) {
+      const NoiseChoice& choice = sources.noises[static_cast<size_t>(noise.noise)];
+      const RirChoice* noise_rir = noise.rir >= 0 ? &sources.rirs[static_cast<size_t>(noise.rir)] : nullptr;
+      const std::string where = noise_rir ? noise_rir->where + " (RIR '" + noise_rir->id + "' of the point-source noise '" +
+                                                choice.id + "')"
+                                          : choice.where + " (noise '" + choice.id + "', added without an RIR)";
+      const int k = channels(noise_rir ? noise_rir->rxfilename : choice.rxfilename, where);
+      if (k != n)
+        throw Error(where + ": has " + std::to_string(k) + " channel(s) but recording '" + recording.new_id +
+                    "' is reverberated with RIR '" + rir.id + "' of " + std::to_string(n) + ": multichannel output " +
+                    "needs one noise channel per RIR channel (a point source's RIR from the same array, an isotropic " +
+                    "noise recorded with as many microphones), as wav-reverberate --multi-channel-output does");
+    }
+  }
+}
+
 // (copy, input recording id) -> the suffixes of its output recordings ("" unless split).
 using ChannelSuffixes = std::map<std::pair<int, std::string>, std::vector<std::string>>;
 ChannelSuffixes channel_suffixes(const std::vector<RecordingPlan>& plans) {
@@ -358,6 +385,11 @@ std::map<std::string, std::string> pipe_wav_scp(const std::vector<RecordingPlan>
   pipe.tsrir_extensions = options.pipe_dialect == PipeDialect::kTsrir ||
                           (options.pipe_dialect == PipeDialect::kAuto && is_tsrir_pipe_program(pipe.program));
   if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
+  if ((plan.multi_channel_output || plan.split_channels) && !pipe.tsrir_extensions && !plan.sources.noises.empty())
+    throw Error(std::string(plan.split_channels ? "--split-channels" : "--multi-channel-output") +
+                " with noises needs tsrir's wav-reverberate in the pipes (Kaldi's nested `wav-reverberate --duration` "
+                "keeps one channel of a noise): the pipe program " + pipe.program + " is taken to be Kaldi's; use "
+                "--write-wavs or our wav-reverberate");
   check_recording_rates(input.wav_scp, dir_rate, pipe.sample_rate_hz > 0, in_dir, options.num_threads);
   std::map<std::string, std::string> wav_scp;
   for (const RecordingPlan& recording : plans) wav_scp[recording.new_id] = format_pipe(recording, plan.sources, pipe);
@@ -421,13 +453,16 @@ long long write_one_wav(const RecordingPlan& recording, const std::string& in_di
   const std::shared_ptr<const PreparedRir> rir = renderer.speech_rir(recording, rate);
   std::vector<StreamChannel> channels(1);
   channels[0].rir = rir.get();
-  channels[0].additive = renderer.additive_signals(recording, rate);
+  channels[0].additive = renderer.additive_signals(recording, rate, recording.rir >= 0 ? recording.rir_channel : -1);
   // --multi-channel-output: one stream channel per RIR channel (kept alive while streaming).
   const std::shared_ptr<const PlanRenderer::RirChannels> array =
       options.multi_channel_output ? renderer.rir_channels(recording.rir, rate) : nullptr;
   if (options.multi_channel_output && array) {
     channels.assign(array->size(), StreamChannel());
-    for (size_t c = 0; c < array->size(); ++c) channels[c].rir = (*array)[c].get();
+    for (size_t c = 0; c < array->size(); ++c) {
+      channels[c].rir = (*array)[c].get();
+      channels[c].additive = renderer.additive_signals(recording, rate, static_cast<int>(c));
+    }
   }
   StreamSettings settings;
   settings.temp_base = wav_path + ".spill";
@@ -519,6 +554,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   if (input.wav_scp.empty()) throw Error(in_dir + "/wav.scp: no recordings");
   std::vector<RecordingPlan> plans = plan_copies(in_dir, input, plan, options.num_threads);
   if (plan.split_channels) plans = split_into_channels(std::move(plans), plan.sources);
+  if (plan.split_channels || plan.multi_channel_output) check_array_noise_channels(plans, plan.sources);
   const auto& [first_id, first_rx] = *input.wav_scp.begin();
   const DirSampleRate dir_rate(plan.sample_rate_hz, first_id, first_rx, in_dir + "/wav.scp: recording '" + first_id + "'");
 

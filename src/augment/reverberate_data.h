@@ -44,12 +44,14 @@ struct ReverberateDataOptions {
   ReverbOptions reverb;
   // One output channel per channel of the recording's RIR (a microphone array's): one
   // multichannel recording per utterance, as wav-reverberate --multi-channel-output=true. Noises
-  // are not added in this mode (they would need as many channels as the RIR).
+  // follow its rules (wav_reverberate.h): a point-source noise through each channel of its RIR, an
+  // isotropic noise channel by channel (it needs as many channels as the RIR), SNR per channel.
   bool multi_channel_output = false;
   // One recording per channel of the recording's RIR instead (the per-channel form, as CHiME-4's
   // 6-channel training data): ids with Kaldi/CHiME's ".CH<c>" suffix (c from 1), each entry's
   // pipe wav-reverberate --rir-channel=<c-1>, and a reco2file_and_channel "<id> <id> A" (Kaldi's
-  // validate_data_dir.sh accepts only sides A and B). Noises are not added in this mode.
+  // validate_data_dir.sh accepts only sides A and B). Noises as with multi_channel_output: entry
+  // c equals channel c of that form (its pipe adds --noise-channel=<c-1>).
   bool split_channels = false;
   bool include_original_data = false;
   Seed random_seed = 0;

@@ -64,7 +64,9 @@ void write_output(const std::string& wx, const std::vector<std::vector<float>>& 
 
 void WavReverberateOptions::Register(OptionsItf* opts) {
   opts->Register("multi-channel-output", &multi_channel_output,
-                 "One output channel per RIR channel (additive signals must have as many channels)");
+                 "One output channel per RIR channel; channel c of every additive signal goes to output channel c at "
+                 "its SNR against that channel's speech (additive signals must have as many channels; a noise "
+                 "reverberated by --additive-impulse-responses gets one per channel of its RIR)");
   opts->Register("input-wave-channel", &input_wave_channel, "Channel of the input used to make the output");
   opts->Register("rir-channel", &rir_channel, "Channel of the RIR, used when --multi-channel-output=false");
   opts->Register("noise-channel", &noise_channel,
@@ -236,6 +238,85 @@ void check_additive_lists(const WavReverberateOptions& config, const std::vector
     throw Error("--additive-offsets given without --additive-signals");
   }
 }
+
+// Which channels of an additive signal the output uses (Kaldi's rule, setup_output_channels):
+// every one with --multi-channel-output and an RIR, else --noise-channel's.
+std::vector<bool> used_noise_channels(const WavReverberateOptions& config, size_t channels, size_t rir_channels) {
+  std::vector<bool> used(channels, false);
+  if (config.multi_channel_output && rir_channels > 0) used.assign(channels, true);
+  else if (config.noise_channel >= 0 && static_cast<size_t>(config.noise_channel) < channels)
+    used[static_cast<size_t>(config.noise_channel)] = true;
+  return used;
+}
+
+// One additive signal through the nested-noise extension (Kaldi's nested `wav-reverberate
+// [--impulse-response=<rir>] [--duration=<s>] <noise> -`, then resampled to `fs`). Channels as
+// a microphone array needs them (issue 33): with an RIR, channel k = the noise's channel 0 (the
+// source's signal, as the nested program's --input-wave-channel=0) through the RIR's channel k,
+// what Kaldi's nested `wav-reverberate --multi-channel-output=true --impulse-response=<rir>` makes;
+// without one, each channel of the noise extended (Kaldi's nested program would keep channel 0
+// only). Only the channels the output uses are computed; the others are left empty.
+std::vector<std::vector<float>> nested_additive_signal(const WavReverberateOptions& config, const std::string& noise_rx,
+                                                       const std::string& rir_rx, double duration_s, double fs,
+                                                       size_t speech_rir_channels) {
+  AudioInfo info;
+  size_t needed = static_cast<size_t>(-1);
+  if (rir_rx.empty()) {
+    // Only the first int(fs * duration) samples matter then (noise_signal.h): a 30 s noise file
+    // cut to a 10 s utterance is read that far. An unreadable file is left to the read below,
+    // which reports it.
+    const std::string t = trim(noise_rx);
+    try {
+      if (t != "-" && !is_pipe_rxfilename(t))
+        needed = kaldi_duration_samples(probe_audio(t).sample_rate_hz, static_cast<float>(duration_s));
+    } catch (const Error&) {
+    }
+  }
+  std::vector<std::vector<float>> noise = read_audio_channels_prefix(noise_rx, needed, &info, "--additive-signals");
+  std::vector<std::vector<float>> rir;
+  if (!rir_rx.empty()) rir = read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses");
+  const size_t channels = rir.empty() ? noise.size() : rir.size();
+  const std::vector<bool> used = used_noise_channels(config, channels, speech_rir_channels);
+  std::vector<std::vector<float>> out(channels);
+  for (size_t k = 0; k < channels; ++k) {
+    if (!used[k]) continue;
+    std::unique_ptr<PreparedRir> prepared;
+    if (!rir.empty()) prepared = std::make_unique<PreparedRir>(std::move(rir[k]), info.sample_rate_hz);
+    std::vector<float> source = rir.empty() ? std::move(noise[k]) : noise.at(0);
+    out[k] = nested_noise_signal(std::move(source), info.sample_rate_hz, prepared.get(), duration_s,
+                                 info.int16_samples, config.reverb.kaldi_compat);
+    if (info.sample_rate_hz != fs) out[k] = resample(out[k], info.sample_rate_hz, fs);
+  }
+  return out;
+}
+
+// Every additive signal's channels at `fs`: read as they are, or made by the nested-noise
+// extensions (--additive-impulse-responses, --additive-durations: fields by position, an empty
+// field or none given = the plain signal).
+std::vector<std::vector<std::vector<float>>> load_additive_signals(const WavReverberateOptions& config,
+                                                                   const std::vector<std::string>& additive_rx,
+                                                                   double fs, size_t speech_rir_channels) {
+  const std::vector<std::string> nested_rirs = split(config.additive_impulse_responses, ',');
+  const std::vector<std::string> nested_durations = split(config.additive_durations, ',');
+  if (!config.additive_impulse_responses.empty() && nested_rirs.size() != additive_rx.size())
+    throw Error("--additive-impulse-responses has " + std::to_string(nested_rirs.size()) +
+                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
+  if (!config.additive_durations.empty() && nested_durations.size() != additive_rx.size())
+    throw Error("--additive-durations has " + std::to_string(nested_durations.size()) +
+                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
+  std::vector<std::vector<std::vector<float>>> additive;
+  for (size_t i = 0; i < additive_rx.size(); ++i) {
+    const std::string rir_rx = config.additive_impulse_responses.empty() ? "" : trim(nested_rirs[i]);
+    const double duration = !config.additive_durations.empty() && !trim(nested_durations[i]).empty()
+                                ? parse_double(trim(nested_durations[i]), "--additive-durations")
+                                : 0.0;
+    if (rir_rx.empty() && duration <= 0)
+      additive.push_back(read_channels_at_rate(additive_rx[i], fs, "--additive-signals"));
+    else
+      additive.push_back(nested_additive_signal(config, additive_rx[i], rir_rx, duration, fs, speech_rir_channels));
+  }
+  return additive;
+}
 }  // namespace
 
 long long run_wav_reverberate(const WavReverberateOptions& config, const std::string& input_rx,
@@ -266,54 +347,8 @@ long long run_wav_reverberate(const WavReverberateOptions& config, const std::st
   std::vector<std::vector<float>> rir;
   if (!config.impulse_response.empty())
     rir = read_channels_at_rate(config.impulse_response, fs, "--impulse-response");
-  // The nested-noise extensions: fields by position, an empty field (or none given) = plain signal.
-  const std::vector<std::string> nested_rirs = split(config.additive_impulse_responses, ',');
-  const std::vector<std::string> nested_durations = split(config.additive_durations, ',');
-  const bool any_nested = !config.additive_impulse_responses.empty() || !config.additive_durations.empty();
-  if (!config.additive_impulse_responses.empty() && nested_rirs.size() != additive_rx.size())
-    throw Error("--additive-impulse-responses has " + std::to_string(nested_rirs.size()) +
-                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
-  if (!config.additive_durations.empty() && nested_durations.size() != additive_rx.size())
-    throw Error("--additive-durations has " + std::to_string(nested_durations.size()) +
-                " fields but --additive-signals has " + std::to_string(additive_rx.size()));
-  std::vector<std::vector<std::vector<float>>> additive;
-  for (size_t i = 0; i < additive_rx.size(); ++i) {
-    const std::string rir_rx = any_nested && !config.additive_impulse_responses.empty() ? trim(nested_rirs[i]) : "";
-    const double duration = any_nested && !config.additive_durations.empty() && !trim(nested_durations[i]).empty()
-                                ? parse_double(trim(nested_durations[i]), "--additive-durations")
-                                : 0.0;
-    if (rir_rx.empty() && duration <= 0) {
-      additive.push_back(read_channels_at_rate(additive_rx[i], fs, "--additive-signals"));
-      continue;
-    }
-    // As the nested program: the noise at its own rate (its first channel), the RIR at that rate,
-    // 16-bit result, then resampled to the speech's rate as the outer program would.
-    AudioInfo info;
-    size_t needed = static_cast<size_t>(-1);
-    if (rir_rx.empty()) {
-      // Only the first int(fs * duration) samples matter then (noise_signal.h): a 30 s noise file
-      // cut to a 10 s utterance is read that far. An unreadable file is left to the read below,
-      // which reports it.
-      const std::string t = trim(additive_rx[i]);
-      try {
-        if (t != "-" && !is_pipe_rxfilename(t))
-          needed = kaldi_duration_samples(probe_audio(t).sample_rate_hz, static_cast<float>(duration));
-      } catch (const Error&) {
-      }
-    }
-    std::vector<std::vector<float>> noise =
-        read_audio_channels_prefix(additive_rx[i], needed, &info, "--additive-signals");
-    std::unique_ptr<PreparedRir> rir;
-    if (!rir_rx.empty())
-      rir = std::make_unique<PreparedRir>(
-          read_channels_at_rate(rir_rx, info.sample_rate_hz, "--additive-impulse-responses").at(0),
-          info.sample_rate_hz);
-    std::vector<float> signal =
-        nested_noise_signal(std::move(noise.at(0)), info.sample_rate_hz, rir.get(), duration, info.int16_samples,
-                            config.reverb.kaldi_compat);
-    if (info.sample_rate_hz != fs) signal = resample(signal, info.sample_rate_hz, fs);
-    additive.push_back({std::move(signal)});
-  }
+  std::vector<std::vector<std::vector<float>>> additive =
+      load_additive_signals(config, additive_rx, fs, rir.size());
   long long clipped = 0;
   size_t total = 0;
   if (!input.on_disk()) {

@@ -22,6 +22,14 @@ struct WavReverberateOptions {
   // additive signals by the same computation in this process (one process per noise less):
   std::string additive_impulse_responses;  // comma-separated rxfilenames, empty field = none
   std::string additive_durations;          // comma-separated s, 0 = as is
+  // Kaldi's channel rules (featbin/wav-reverberate.cc): with multi_channel_output, output channel
+  // c = the input through RIR channel c plus channel c of every additive signal (each must have as
+  // many channels as the RIR: a mono noise is refused, as Kaldi's assertion refuses it), scaled to
+  // its SNR against channel c's own early reverberant speech and normalised per channel; without
+  // it, --rir-channel and --noise-channel pick one of each. A microphone array's noises therefore
+  // take the same channel everywhere: the split form (--rir-channel=c --noise-channel=c) equals
+  // channel c of the multichannel one. The nested-noise extensions keep an array's channels
+  // (nested_additive_signal in wav_reverberate.cc).
   bool multi_channel_output = false;
   int input_wave_channel = 0;
   int rir_channel = 0;

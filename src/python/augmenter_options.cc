@@ -49,6 +49,7 @@ const std::map<std::string, Field>& fields() {
     t["shift_output"] = reverb_field(&ReverbOptions::shift_output);
     t["normalize_output"] = reverb_field(&ReverbOptions::normalize_output);
     t["multi_channel_output"] = field(&Options::multi_channel_output);
+    t["split_channels"] = field(&Options::split_channels);
     t["rir_smoothing_weight"] = field(&Options::rir_smoothing_weight);
     t["noise_smoothing_weight"] = field(&Options::noise_smoothing_weight);
     t["seed"] = field(&Options::random_seed);

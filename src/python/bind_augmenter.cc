@@ -74,15 +74,24 @@ class Augmenter {
   }
 
   // The far-field copy, as reverberate-data --write-wavs makes it (before its 16-bit encoding): one
-  // channel, or with multi_channel_output one per channel of the plan's RIR.
+  // channel, or with multi_channel_output / split_channels one per channel of the plan's RIR (entry
+  // .CH<c> of the split form is channel c - 1 of the multichannel one).
   std::vector<std::vector<float>> materialise(const std::vector<float>& speech, double fs, const RecordingPlan& plan) {
-    if (options_.multi_channel_output) return renderer_->render_channels(speech, fs, plan);
+    if (options_.multi_channel_output || options_.split_channels) return renderer_->render_channels(speech, fs, plan);
     return {renderer_->render(speech, fs, plan)};
   }
-  // (samples,), or (channels, samples) with multi_channel_output (whatever the channel count).
-  py::array shaped(std::vector<std::vector<float>>&& channels) const {
+  // (samples,); (channels, samples) with multi_channel_output (whatever the channel count); with
+  // split_channels {id: (samples,)} keyed as reverberate-data --split-channels names the entries:
+  // <new id>.CH<c> (c from 1) per channel of the RIR, the new id alone for a copy without one.
+  py::object shaped(std::vector<std::vector<float>>&& channels, const RecordingPlan& plan) const {
     if (options_.multi_channel_output) return py::array(to_numpy(channels));
-    return py::array(to_numpy(std::move(channels.front())));
+    if (!options_.split_channels) return py::array(to_numpy(std::move(channels.front())));
+    py::dict entries;
+    for (size_t c = 0; c < channels.size(); ++c) {
+      const std::string id = plan.rir >= 0 ? plan.new_id + ".CH" + std::to_string(c + 1) : plan.new_id;
+      entries[py::str(id)] = py::array(to_numpy(std::move(channels[c])));
+    }
+    return std::move(entries);
   }
 
  private:
@@ -206,13 +215,15 @@ void bind_augmenter(py::module_& m) {
           [](Augmenter& self, const py::handle& speech, double fs, const std::string& id, int copy) {
             std::vector<std::vector<float>> x = {to_samples(speech, "speech")};
             std::vector<std::vector<float>> y;
+            RecordingPlan plan;
             {
               py::gil_scoped_release release;
               const std::vector<float> at_rate =
                   self.dir_rate().speech_at_rate(std::move(x), fs, "speech of recording '" + id + "'");
-              y = self.materialise(at_rate, self.dir_rate().rate_hz(), self.plan(id, copy));
+              plan = self.plan(id, copy);
+              y = self.materialise(at_rate, self.dir_rate().rate_hz(), plan);
             }
-            return self.shaped(std::move(y));
+            return self.shaped(std::move(y), plan);
           },
           py::arg("speech"), py::arg("fs"), py::arg("id"), py::arg("copy") = 1,
           "The far-field copy of one utterance given its samples (1-D float32) at fs Hz, at the data dir's\n"
@@ -222,9 +233,10 @@ void bind_augmenter(py::module_& m) {
           [](Augmenter& self, const std::string& id, int copy) {
             std::vector<std::vector<float>> y;
             double fs = 0;
+            RecordingPlan plan;
             {
               py::gil_scoped_release release;
-              const RecordingPlan plan = self.plan(id, copy);
+              plan = self.plan(id, copy);
               AudioInfo info;
               const std::string where = "wav.scp: recording '" + id + "'";
               std::vector<std::vector<float>> channels = read_audio_channels(plan.source_rx, &info, where);
@@ -232,7 +244,7 @@ void bind_augmenter(py::module_& m) {
               y = self.materialise(self.dir_rate().speech_at_rate(std::move(channels), info.sample_rate_hz, where), fs,
                                    plan);
             }
-            return py::make_tuple(self.shaped(std::move(y)), fs);
+            return py::make_tuple(self.shaped(std::move(y), plan), fs);
           },
           py::arg("id"), py::arg("copy") = 1,
           "Reads the recording's wav.scp entry (path or 'command |') and returns (far-field copy, fs): fs is\n"

@@ -192,8 +192,8 @@ void DiffuseTailComponent::add_tail(const RenderContext& ctx, const float* white
   const RenderFacts& facts = ctx.facts;
   const size_t first = tail_start(ctx);
   // The share of the diffuse energy the polar patterns pass (1 for omni, exactly).
-  const double pattern_energy = polar_diffuse_energy(room.mic_pattern.value_or(PolarPattern::kOmni)) *
-                                polar_diffuse_energy(room.source_pattern.value_or(PolarPattern::kOmni));
+  const double mic_energy = polar_diffuse_energy(room.mic_pattern.value_or(PolarPattern::kOmni));
+  const BandValues source_energy = source_diffuse_energy(room);
 
   const BandValues rate = eyring_decay_rate_per_s(room);
   const double density_per_sample = room.speed_of_sound_m_s / (4.0 * kPi * room.volume_m3() * fs);
@@ -211,6 +211,7 @@ void DiffuseTailComponent::add_tail(const RenderContext& ctx, const float* white
     }
     const double t0 = first / fs;
     double amp = std::sqrt(level * density_per_sample) * std::exp(-0.5 * rate[b] * t0);
+    const double pattern_energy = mic_energy * source_energy[b];
     if (pattern_energy != 1.0) amp *= std::sqrt(pattern_energy);
     const double s = room.scattering[b];
     const double log_specular_rate = s >= 1.0 ? -INFINITY : std::log1p(-s) * reflections_per_s;

@@ -87,14 +87,17 @@ namespace {
 // The polar patterns' gain for one image: the microphone's for the direction the sound arrives
 // from, the source's for the direction it left the real source in (the image's direction to the
 // microphone, mirrored back on every axis where the image is a mirror image).
-double pattern_gain(const RoomSpec& room, const AxisImage* xyz[3], const double offset[3], double distance_m) {
+// Per band, as a loudspeaker's pattern may differ by band (RoomSpec::source_band_patterns).
+BandValues pattern_gains(const RoomSpec& room, const AxisImage* xyz[3], const double offset[3], double distance_m) {
   Vec3 arrival{}, departure{};
   for (int i = 0; i < 3; ++i) {
     arrival[i] = offset[i] / distance_m;  // from the microphone towards the image
     departure[i] = -xyz[i]->mirror * arrival[i];
   }
-  return polar_gain(room.mic_pattern.value_or(PolarPattern::kOmni), room.mic_axis, arrival) *
-         polar_gain(room.source_pattern.value_or(PolarPattern::kOmni), room.source_axis, departure);
+  const double mic = polar_gain(room.mic_pattern.value_or(PolarPattern::kOmni), room.mic_axis, arrival);
+  BandValues gains = source_pattern_gains(room, departure);
+  for (double& g : gains) g *= mic;
+  return gains;
 }
 
 // sqrt(1 - s)^k per band for every reflection count k the lattice holds: the same std::pow values
@@ -127,8 +130,7 @@ std::vector<ImageArrival> image_arrivals(const ImageLattice& lattice, const Room
   for (int i = 0; i < 3; ++i) spread_sq += (room.mic_m[i] - lattice.centre[i]) * (room.mic_m[i] - lattice.centre[i]);
   const double outer = std::min(lattice.reach_m, reach + std::sqrt(spread_sq));
   const double outer_sq = spread_sq == 0.0 ? reach_sq : outer * outer;
-  const bool directional = room.mic_pattern.value_or(PolarPattern::kOmni) != PolarPattern::kOmni ||
-                           room.source_pattern.value_or(PolarPattern::kOmni) != PolarPattern::kOmni;
+  const bool directional = has_directional_transducers(room);
   const std::vector<BandValues> scatter_loss = scattering_loss_table(room, lattice);
   std::vector<ImageArrival> out;
   // A shoebox holds about (4 pi / 3) reach^3 / V images within reach.
@@ -156,8 +158,8 @@ std::vector<ImageArrival> image_arrivals(const ImageLattice& lattice, const Room
         if (directional) {
           const AxisImage* xyz[3] = {&x, &y, &z};
           const double offset[3] = {dx, dy, dz};
-          const double gain = pattern_gain(room, xyz, offset, arr.distance_m);
-          for (double& a : arr.amplitude) a *= gain;
+          const BandValues gains = pattern_gains(room, xyz, offset, arr.distance_m);
+          for (int b = 0; b < kNumOctaveBands; ++b) arr.amplitude[b] *= gains[b];
         }
         out.push_back(arr);
       }

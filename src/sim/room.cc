@@ -41,6 +41,31 @@ double RoomSpec::source_mic_distance_m() const {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+PolarPattern source_pattern_in_band(const RoomSpec& room, int band) {
+  if (room.source_band_patterns) return (*room.source_band_patterns)[static_cast<size_t>(band)];
+  return room.source_pattern.value_or(PolarPattern::kOmni);
+}
+
+bool has_directional_transducers(const RoomSpec& room) {
+  if (room.mic_pattern.value_or(PolarPattern::kOmni) != PolarPattern::kOmni) return true;
+  for (int b = 0; b < kNumOctaveBands; ++b)
+    if (source_pattern_in_band(room, b) != PolarPattern::kOmni) return true;
+  return false;
+}
+
+BandValues source_pattern_gains(const RoomSpec& room, const Vec3& departure) {
+  BandValues gains{};
+  for (int b = 0; b < kNumOctaveBands; ++b)
+    gains[b] = polar_gain(source_pattern_in_band(room, b), room.source_axis, departure);
+  return gains;
+}
+
+BandValues source_diffuse_energy(const RoomSpec& room) {
+  BandValues energy{};
+  for (int b = 0; b < kNumOctaveBands; ++b) energy[b] = polar_diffuse_energy(source_pattern_in_band(room, b));
+  return energy;
+}
+
 RoomSpec RoomSpec::for_mic(size_t mic) const {
   RoomSpec single = *this;
   single.mic_m = mic_position_m(mic);

@@ -41,6 +41,9 @@ struct RoomSpec {
   // Polar patterns and unit axes (sim/polar_pattern.h); the microphones of an array share theirs.
   // Unset patterns are omni (rir-simulate fills them from --mic-pattern / --src-pattern).
   std::optional<PolarPattern> mic_pattern, source_pattern;
+  // A loudspeaker's pattern per octave band (62.5 Hz .. 8 kHz; room-list src_pattern_bands=): when
+  // set it replaces source_pattern band by band (omni at low frequencies, directional above).
+  std::optional<std::array<PolarPattern, kNumOctaveBands>> source_band_patterns;
   Vec3 mic_axis{1.0, 0.0, 0.0};
   Vec3 source_axis{1.0, 0.0, 0.0};
   // Random-incidence energy absorption coefficient per surface and band, in (0, 1].
@@ -62,6 +65,16 @@ struct RoomSpec {
   // The same set-up seen by one microphone of the array alone (mic_m = its position, no array).
   RoomSpec for_mic(size_t mic) const;
 };
+
+// The source's pattern in octave band `band`: source_band_patterns when given, else
+// source_pattern, else omni.
+PolarPattern source_pattern_in_band(const RoomSpec& room, int band);
+// Whether any band of the source, or the microphone, has a pattern other than omni.
+bool has_directional_transducers(const RoomSpec& room);
+// Per band: the source's gain towards unit direction `departure` (polar_gain), and the share
+// mean(g^2) of its power it radiates into a diffuse field (polar_diffuse_energy).
+BandValues source_pattern_gains(const RoomSpec& room, const Vec3& departure);
+BandValues source_diffuse_energy(const RoomSpec& room);
 
 // c = 331.3 * sqrt(1 + T / 273.15) m/s (dry air; 343.2 m/s at 20 C).
 double speed_of_sound_from_temperature_m_s(double temperature_c);

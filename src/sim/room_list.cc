@@ -88,6 +88,11 @@ std::string format_transducer_keys(const RoomSpec& room) {
   if (room.mic_pattern) out += " mic_pattern=" + choice_name(polar_pattern_choices(), *room.mic_pattern);
   if (room.mic_axis != default_axis) out += " mic_dir=" + format_axis(room.mic_axis);
   if (room.source_pattern) out += " src_pattern=" + choice_name(polar_pattern_choices(), *room.source_pattern);
+  if (room.source_band_patterns) {
+    out += " src_pattern_bands=";
+    for (size_t b = 0; b < room.source_band_patterns->size(); ++b)
+      out += (b ? "," : "") + choice_name(polar_pattern_choices(), (*room.source_band_patterns)[b]);
+  }
   if (room.source_axis != default_axis) out += " src_dir=" + format_axis(room.source_axis);
   return out;
 }
@@ -97,8 +102,21 @@ struct TransducerKeys {
   std::optional<std::vector<Vec3>> mics;     // mic=x,y,z[;x,y,z...]
   std::optional<std::string> array_file;     // array=FILE (offsets from a single mic=)
   std::optional<PolarPattern> mic_pattern, source_pattern;
+  std::optional<std::array<PolarPattern, kNumOctaveBands>> source_band_patterns;  // src_pattern_bands=
   std::optional<Vec3> mic_axis, source_axis;
 };
+
+// src_pattern_bands=P62.5,P125,...,P8000: one pattern name per octave band.
+std::array<PolarPattern, kNumOctaveBands> parse_band_patterns(const std::string& value, const std::string& context) {
+  const std::vector<std::string> names = split(value, ',');
+  if (names.size() != kNumOctaveBands)
+    throw Error(context + ": src_pattern_bands needs " + std::to_string(kNumOctaveBands) +
+                " comma-separated patterns (62.5 Hz .. 8 kHz), got " + std::to_string(names.size()));
+  std::array<PolarPattern, kNumOctaveBands> patterns{};
+  for (size_t b = 0; b < names.size(); ++b)
+    patterns[b] = parse_choice(polar_pattern_choices(), trim(names[b]), context + ": src_pattern_bands");
+  return patterns;
+}
 
 Vec3 parse_axis(const std::string& value, const std::string& key, const std::string& context) {
   const std::vector<double> v = parse_double_list(value, ',', context + ": " + key);
@@ -121,6 +139,8 @@ bool parse_transducer_key(const std::string& key, const std::string& value, cons
   } else if (key == "mic_pattern" || key == "src_pattern") {
     const PolarPattern p = parse_choice(polar_pattern_choices(), value, context + ": " + key);
     (key == "mic_pattern" ? keys->mic_pattern : keys->source_pattern) = p;
+  } else if (key == "src_pattern_bands") {
+    keys->source_band_patterns = parse_band_patterns(value, context);
   } else if (key == "mic_dir" || key == "src_dir") {
     (key == "mic_dir" ? keys->mic_axis : keys->source_axis) = parse_axis(value, key, context);
   } else {
@@ -144,7 +164,10 @@ void apply_transducer_keys(const TransducerKeys& keys, const std::string& contex
   }
   if (room->array_m.size() > 64) throw Error(context + ": more than 64 microphones");
   room->mic_pattern = keys.mic_pattern;
+  if (keys.source_pattern && keys.source_band_patterns)
+    throw Error(context + ": give src_pattern (every band) or src_pattern_bands (one per band), not both");
   room->source_pattern = keys.source_pattern;
+  room->source_band_patterns = keys.source_band_patterns;
   if (keys.mic_axis) room->mic_axis = *keys.mic_axis;
   if (keys.source_axis) room->source_axis = *keys.source_axis;
 }
@@ -223,7 +246,7 @@ RoomSpec parse_room_list_line(const std::string& line, const std::string& contex
       }
     } else {
       throw Error(context + ": unknown key '" + key + "' (known: " +
-                  "room src mic array mic_pattern mic_dir src_pattern src_dir absorption absorption.<surface> "
+                  "room src mic array mic_pattern mic_dir src_pattern src_pattern_bands src_dir absorption absorption.<surface> "
                   "scattering t60 room-id temperature humidity)");
     }
   }
@@ -331,6 +354,7 @@ std::string room_list_keys_help() {
       "                       hypercardioid, figure8 (g = a + (1-a) cos theta, a = 1, .75, .5, .25, 0)\n"
       "  mic_dir=AZ,EL        their axis: azimuth (deg from +x towards +y), elevation (deg); default 0,0\n"
       "  src_pattern=P src_dir=AZ,EL   the same for the source (default omni)\n"
+      "  src_pattern_bands=P,...  a loudspeaker's pattern per octave band, 8 names (62.5 Hz .. 8 kHz)\n"
       "  absorption=A         energy absorption of all six surfaces, in (0,1]; one value or 8 band values\n"
       "                       a63,a125,a250,a500,a1k,a2k,a4k,a8k (default 0.2)\n"
       "  absorption.walls=A   the four walls (x0,x1,y0,y1); overrides absorption=\n"

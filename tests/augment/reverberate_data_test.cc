@@ -338,9 +338,132 @@ TEST_F(ReverberateData, SplitChannelsGivesOneEntryPerArrayChannel) {
     }
   }
   EXPECT_NE(run_in(dir, common + "--multi-channel-output true in o").status, 0);
-  CliRun noisy = run_in(dir, common + "--noise-set-parameters lists/noise_list in o");
-  EXPECT_NE(noisy.status, 0);
-  EXPECT_NE(noisy.log.find("--split-channels"), std::string::npos) << noisy.log;
+}
+
+// The value of `--<name>=` in a wav.scp pipe (its shell-quoted word), split at commas.
+std::vector<std::string> pipe_list(const std::string& pipe, const std::string& name) {
+  const std::string key = "--" + name + "=";
+  const size_t at = pipe.find(key);
+  if (at == std::string::npos) return {};
+  const size_t begin = at + key.size();
+  const std::string value = pipe.substr(begin, pipe.find_first_of("' ", begin) - begin);
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (size_t comma; (comma = value.find(',', start)) != std::string::npos; start = comma + 1)
+    out.push_back(value.substr(start, comma - start));
+  out.push_back(value.substr(start));
+  return out;
+}
+
+// Noises with a microphone array's RIRs (issue 33), both forms: a 3-channel isotropic noise of the
+// room and a mono point-source noise through a 3-channel RIR of the same room. Channel c of the
+// multichannel form (pipes = --write-wavs in memory = streamed) equals entry <id>.CH<c+1> of the
+// split form, and both equal the test's own float64 computation: the speech through RIR channel
+// c, the isotropic noise's channel c extended to the recording, the point source through channel c
+// of its RIR (normalised, 16-bit, as Kaldi's nested step), each scaled to its SNR against channel
+// c's early reverberant speech (Kaldi's rule), within 1 LSB. A mono isotropic noise for the array
+// and Kaldi's pipe program are refused (exit 1, nothing written).
+TEST_F(ReverberateData, ArrayNoisesPerChannelInBothForms) {
+  std::vector<reftest::Vec> array, source_array, iso;
+  for (int c = 0; c < 3; ++c) {
+    array.push_back(reftest::synthetic_rir(3000, 16000, 40 + 9 * c, 0.3, 20 + c));
+    source_array.push_back(reftest::synthetic_rir(2000, 16000, 25 + 13 * c, 0.25, 30 + c));
+    iso.push_back(reftest::quantise16(reftest::noise_signal(8000, 70 + c, 0.2)));
+  }
+  reftest::write_wav(dir + "/rirs/array3.wav", array, 16000, 32, true);
+  reftest::write_wav(dir + "/rirs/source3.wav", source_array, 16000, 32, true);
+  reftest::write_wav(dir + "/noise/iso3.wav", iso, 16000, 16);
+  // Two RIRs of one room: the speech's and the point source's are drawn from both; the test reads
+  // the draws (and SNRs, start times) from the pipes.
+  write_text(dir + "/lists/rir_list_array", "--rir-id arr --room-id roomC rirs/array3.wav\n"
+                                            "--rir-id src --room-id roomC rirs/source3.wav\n");
+  write_text(dir + "/lists/noise_array", "--noise-id iso3 --noise-type isotropic --room-linkage roomC noise/iso3.wav\n"
+                                         "--noise-id short --noise-type point-source --bg-fg-type foreground noise/short.wav\n");
+  write_text(dir + "/arr_in/wav.scp", "u1 " + dir + "/audio/spkA-u1.wav\nu2 " + dir + "/audio/spkB-u2.wav\n");
+  write_text(dir + "/arr_in/utt2spk", "u1 s1\nu2 s2\n");
+  const std::string common = "--rir-set-parameters lists/rir_list_array --noise-set-parameters lists/noise_array "
+                             "--max-noises-per-recording 1 --foreground-snrs 5 --background-snrs 10 --random-seed 5 ";
+  for (const std::string form : {"--multi-channel-output true ", "--split-channels true "}) {
+    ASSERT_EQ(run_in(dir, common + form + "arr_in arr_pipe" + form.substr(2, 5)).status, 0);
+    ASSERT_EQ(run_in(dir, common + form + "--write-wavs arr_w" + form.substr(2, 5) + " arr_in arr_wav" +
+                              form.substr(2, 5)).status, 0);
+    ASSERT_EQ(run_in(dir, common + form + "--max-in-memory-duration 0 --write-wavs arr_s" + form.substr(2, 5) +
+                              " arr_in arr_stream" + form.substr(2, 5)).status, 0);
+  }
+  const tsrir::DataDir multi = tsrir::read_data_dir(dir + "/arr_pipemulti"), split = tsrir::read_data_dir(dir + "/arr_pipesplit");
+  ASSERT_EQ(multi.wav_scp.size(), 2u);
+  ASSERT_EQ(split.wav_scp.size(), 6u);
+  auto run_pipe = [&](const std::string& pipe, const std::string& id) {
+    tsrir::AudioInfo info;
+    return tsrir::decode_audio_bytes(tsrir::run_command_capture("cd " + dir + " && " + pipe.substr(0, pipe.size() - 1), id),
+                                     &info, id);
+  };
+  bool noise_rir_differs = false;  // the seed gives a point source elsewhere in the room
+  for (const auto& [id, pipe] : multi.wav_scp) {
+    SCOPED_TRACE(pipe);
+    const auto piped = run_pipe(pipe, id);
+    ASSERT_EQ(piped.size(), 3u);
+    const std::string wav = dir + "/arr_wmulti/" + id + ".wav";
+    tsrir::AudioInfo wav_info;
+    EXPECT_EQ(piped, tsrir::read_audio_channels(wav, &wav_info, wav));
+    EXPECT_EQ(read_text(wav), read_text(dir + "/arr_smulti/" + id + ".wav"));
+    // The plan, as the pipe states it: noise order, SNRs, start times, each noise's RIR.
+    const std::vector<std::string> signals = pipe_list(pipe, "additive-signals"), snrs = pipe_list(pipe, "snrs"),
+                                   starts = pipe_list(pipe, "start-times"),
+                                   rirs = pipe_list(pipe, "additive-impulse-responses"),
+                                   durations = pipe_list(pipe, "additive-durations");
+    ASSERT_EQ(signals.size(), 2u);
+    ASSERT_NE(signals[0].find("iso3"), std::string::npos);
+    ASSERT_NE(signals[1].find("short"), std::string::npos);
+    const std::vector<reftest::Vec>& point_rir = rirs.at(1).find("source3") != std::string::npos ? source_array : array;
+    noise_rir_differs |= rirs.at(1) != pipe_list(pipe, "impulse-response").at(0);
+    const std::vector<reftest::Vec>& speech_rir =
+        pipe_list(pipe, "impulse-response").at(0).find("source3") != std::string::npos ? source_array : array;
+    const std::vector<float> samples =
+        tsrir::read_audio(dir + "/audio/" + (id == "u1" ? "spkA-u1" : "spkB-u2") + ".wav").samples;
+    const reftest::Vec speech(samples.begin(), samples.end());
+    for (int c = 0; c < 3; ++c) {
+      const std::string split_id = id + ".CH" + std::to_string(c + 1);
+      ASSERT_TRUE(split.wav_scp.count(split_id));
+      EXPECT_EQ(run_pipe(split.wav_scp.at(split_id), split_id).at(0), piped[c]) << split_id;
+      EXPECT_EQ(tsrir::read_audio(dir + "/arr_wsplit/" + split_id + ".wav").samples, piped[c]) << split_id;
+      // Kaldi's isotropic noise: channel c from its start, repeated to the recording's length.
+      ASSERT_EQ(std::stod(durations.at(0)) * 16000, static_cast<double>(speech.size()));
+      reftest::Vec iso_c(speech.size());
+      for (size_t i = 0; i < iso_c.size(); ++i) iso_c[i] = iso[c][i % iso[c].size()];
+      // The (foreground) point source: its normalised convolution with channel c of its RIR, to 16 bits.
+      ASSERT_EQ(durations.at(1), "0");
+      const std::vector<float> short_noise = tsrir::read_audio(dir + "/noise/short.wav").samples;
+      const reftest::Vec point_c = reftest::quantise16(
+          reftest::wav_reverberate(reftest::Vec(short_noise.begin(), short_noise.end()), 16000, point_rir[c], {}, {})
+              .output);
+      std::vector<reftest::Additive> additive(2);
+      additive[0].samples = iso_c;
+      additive[0].snr_db = std::stod(snrs.at(0));
+      additive[1].samples = point_c;
+      additive[1].snr_db = std::stod(snrs.at(1));
+      additive[1].start_s = std::stod(starts.at(1));
+      const reftest::Vec want = reftest::wav_reverberate(speech, 16000, speech_rir[c], additive, {}).output;
+      ASSERT_EQ(piped[c].size(), want.size());
+      double worst_lsb = 0;
+      for (size_t i = 0; i < want.size(); ++i)
+        worst_lsb = std::max(worst_lsb, std::abs(piped[c][i] - std::clamp(want[i], -1.0, 32767.0 / 32768.0)) * 32768.0);
+      EXPECT_LE(worst_lsb, 1.0) << split_id;
+    }
+  }
+  EXPECT_TRUE(noise_rir_differs);
+  write_text(dir + "/lists/noise_mono", "--noise-id iso_a --noise-type isotropic --room-linkage roomC noise/iso_a.wav\n");
+  for (const std::string form : {"--multi-channel-output true ", "--split-channels true "}) {
+    CliRun mono = run_in(dir, "--rir-set-parameters lists/rir_list_array --noise-set-parameters lists/noise_mono " +
+                                  form + "arr_in arr_bad");
+    EXPECT_EQ(mono.status, 1) << mono.log;
+    EXPECT_NE(mono.log.find("lists/noise_mono:1 (noise 'iso_a', added without an RIR): has 1 channel(s)"),
+              std::string::npos) << mono.log;
+    CliRun kaldi = run_in(dir, common + form + "--pipe-dialect kaldi arr_in arr_bad");
+    EXPECT_EQ(kaldi.status, 1) << kaldi.log;
+    EXPECT_NE(kaldi.log.find("taken to be Kaldi's"), std::string::npos) << kaldi.log;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/arr_bad"));
 }
 
 TEST_F(ReverberateData, HelpAndBadOptions) {

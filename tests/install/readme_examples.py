@@ -50,6 +50,8 @@ PRODUCES = {
     "rir-simulate --format=float --length=0.5 array_room.txt": ["sim_array/a1.wav", "sim_array/rir_list"],
     "wav-reverberate --multi-channel-output=true": ["far8.wav"],
     "reverberate-data --multi-channel-output=true": ["data/rvb8/wav.scp"],
+    "rir-simulate --format=float --length=0.5 office.txt": ["sim_office/a1.wav", "sim_office/n1.wav"],
+    "reverberate-data --split-channels=true": ["data/rvb8n/wav.scp", "data/rvb8n/reco2file_and_channel"],
     "rir-eq --real=real.scp": ["gas_eq/rir_list"],
     "reverberate-data --rir-set-parameters '0.5, real/rir_list'": ["data/rvb/wav.scp"],
     "reverberate-data --rir-set-parameters gas_eq/rir_list": ["data/rvb_wavs/wav.scp"],

@@ -234,11 +234,23 @@ def read_bytes(path):
         return f.read()
 
 
+def write_array_noises(d, tag, step, n, seed):
+    """<d>/noise_list3<tag>: a 3-channel isotropic noise of room 'arr' (a sine per channel, n
+    samples) and a mono foreground point-source noise."""
+    iso = np.array([0.05 * np.sin(step * (c + 1) * np.arange(n)) for c in range(3)])
+    write_wav16("%s/iso3%s.wav" % (d, tag), iso, FS)
+    write_wav16("%s/ps%s.wav" % (d, tag), speech_like(3000, FS, seed) * 0.3, FS)
+    write_text("%s/noise_list3%s" % (d, tag),
+               "--noise-id iso3 --noise-type isotropic --room-linkage arr %s/iso3%s.wav\n"
+               "--noise-id ps --noise-type point-source --bg-fg-type foreground %s/ps%s.wav\n" % (d, tag, d, tag))
+
+
 class MultichannelFarField(unittest.TestCase):
     """--multi-channel-output=true with a microphone array's RIRs (rir-simulate, 3 microphones):
     one 3-channel recording per utterance; channel c is what wav-reverberate makes with RIR
     channel c alone (--rir-channel=c, the mono path); the pipes, --write-wavs (in memory and
-    streamed) and the Augmenter agree; noises are refused with a clear error."""
+    streamed) and the Augmenter agree, noises included (a 3-channel isotropic noise, a point
+    source through the array's RIR); a mono isotropic noise is refused with a clear error."""
 
     @classmethod
     def setUpClass(cls):
@@ -285,15 +297,79 @@ class MultichannelFarField(unittest.TestCase):
                                           "--impulse-response=" + d + "/rirs/arr.wav", "%s/%s.wav" % (d, utt), "-"]))
                 np.testing.assert_array_equal(x[c], mono[0], "%s channel %d" % (utt, c))
 
-    def test_noises_and_multichannel_speech_are_clear_errors(self):
+    def test_noises_per_channel_pipes_and_augmenter_agree(self):
+        d = self.dir
+        write_array_noises(d, "", 0.01, 7000, 77)
+        noisy = self.base + ["--noise-set-parameters", d + "/noise_list3", "--max-noises-per-recording", "1"]
+        run([program("reverberate-data")] + noisy + [d + "/in", d + "/noisy"])
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], seed=3,
+                              noise_set_parameters=[d + "/noise_list3"], max_noises_per_recording=1,
+                              multi_channel_output=True)
+        for utt, pipe in read_scp(d + "/noisy/wav.scp").items():
+            self.assertIn("iso3.wav", pipe)
+            self.assertIn("ps.wav", pipe)
+            piped = run_bytes(["sh", "-c", pipe.rstrip().rstrip("|")])
+            y, fs = aug.augment(utt)
+            self.assertEqual(y.shape[0], 3)
+            self.assertEqual(tsrir.encode_wav(y, fs), piped, utt)
+
+    def test_split_channels_equal_the_per_channel_data_dir(self):
+        """split_channels=True: one mono copy per channel, keyed as reverberate-data --split-channels
+        keys its entries (prefix="rvb": the program forces it for several copies, the Augmenter
+        cannot know how many will be asked for), each the bytes of that entry's --write-wavs wav
+        (noises included); a copy that is not reverberated keeps its id; multichannel speech is
+        refused."""
+        d = self.dir
+        write_array_noises(d, "s", 0.013, 9000, 78)
+        options = ["--rir-set-parameters", d + "/rirs/rir_list", "--noise-set-parameters", d + "/noise_list3s",
+                   "--max-noises-per-recording", "1", "--num-replications", "3", "--speech-rvb-probability", "0.5",
+                   "--random-seed", "4"]
+        run([program("reverberate-data"), "--split-channels=true"] + options +
+            ["--write-wavs", d + "/split_w", d + "/in", d + "/split"])
+        entries = read_scp(d + "/split/wav.scp")
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], seed=4,
+                              noise_set_parameters=[d + "/noise_list3s"], max_noises_per_recording=1,
+                              speech_rvb_probability=0.5, prefix="rvb", split_channels=True)
+        multi = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], seed=4,
+                                noise_set_parameters=[d + "/noise_list3s"], max_noises_per_recording=1,
+                                speech_rvb_probability=0.5, prefix="rvb", multi_channel_output=True)
+        got = {}
+        for utt in ("u0", "u1"):
+            for copy in (1, 2, 3):
+                y, fs = aug.augment(utt, copy)
+                self.assertEqual(list(y), sorted(y))
+                got.update({k: tsrir.encode_wav(v, fs) for k, v in y.items()})
+                if len(y) == 3:  # the split form is the multichannel one, channel by channel
+                    m, _ = multi.augment(utt, copy)
+                    for c, v in enumerate(y.values()):
+                        np.testing.assert_array_equal(v, m[c])
+        self.assertEqual(sorted(got), sorted(entries))
+        self.assertTrue(any(k.endswith(".CH3") for k in got) and any(".CH" not in k for k in got), sorted(got))
+        for key, wav in got.items():
+            self.assertEqual(wav, read_bytes("%s/split_w/%s.wav" % (d, key)), key)
+        x, _ = read_wav16(d + "/u0.wav")
+        from_samples = aug(x[0].astype(np.float32) / 32768, FS, "u0", 2)
+        self.assertEqual({k: tsrir.encode_wav(v, FS) for k, v in from_samples.items()},
+                         {k: got[k] for k in from_samples})
+        with self.assertRaises(ValueError) as caught:
+            aug(np.zeros((2, 8000), dtype=np.float32), FS, "u0")
+        self.assertIn("split_channels", str(caught.exception))
+
+    def test_mono_noise_and_multichannel_speech_are_clear_errors(self):
         d = self.dir
         write_wav16(d + "/noise.wav", 0.1 * np.ones(100), FS)
-        write_text(d + "/noise_list", "--noise-id n --noise-type isotropic %s/noise.wav\n" % d)
+        write_text(d + "/noise_list", "--noise-id n --noise-type isotropic --room-linkage arr %s/noise.wav\n" % d)
         with self.assertRaises(Exception) as caught:
             run([program("reverberate-data")] + self.base + ["--noise-set-parameters", d + "/noise_list",
                                                               d + "/in", d + "/bad"])
+        self.assertIn("has 1 channel(s) but recording", str(caught.exception))
         self.assertIn("--multi-channel-output", str(caught.exception))
         self.assertFalse(os.path.exists(d + "/bad"))
+        aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"],
+                              noise_set_parameters=[d + "/noise_list"], multi_channel_output=True)
+        with self.assertRaises(Exception) as caught:
+            aug.augment("u0")
+        self.assertIn("has 1 channel(s), but microphone 1 of the array needs its own", str(caught.exception))
         aug = tsrir.Augmenter(data_dir=d + "/in", rir_set_parameters=[d + "/rirs/rir_list"], multi_channel_output=True)
         with self.assertRaises(ValueError) as caught:
             aug(np.zeros((4, 8000), dtype=np.float32), FS, "u0")

@@ -118,7 +118,8 @@ def simulate(room, src, mic, fs=16000, t60=None, absorption=None, scattering=Non
     rir-simulate does. length: seconds, or "auto" (until the decay is 60 dB down). extra: more
     room-list keys, e.g. {"absorption.floor": 0.5, "temperature": 25, "room-id": "r1"}
     (tsrir.room_list_keys_help()); polar patterns: {"mic_pattern": "cardioid", "mic_dir": (90, 0),
-    "src_pattern": ..., "src_dir": ...}.
+    "src_pattern": ..., "src_dir": ...}; a loudspeaker's per octave band:
+    {"src_pattern_bands": "omni,omni,omni,omni,cardioid,cardioid,cardioid,cardioid"}.
 
     Returns float32 numpy (samples,) with samples = round(length * fs) for one microphone,
     (microphones, samples) for an array: the samples `rir-simulate --format=float` writes for the

@@ -42,7 +42,11 @@ class Augmenter:
     aug(speech, fs, id, copy=1) and aug.augment(id, copy=1) equal the wav that
     `reverberate-data --num-replications>=copy --write-wavs` writes for copy `copy` of recording
     `id` (before its 16-bit encoding). It pickles (to DataLoader workers) as its options and
-    recordings.
+    recordings. With a microphone array's RIRs, multi_channel_output=True gives (channels,
+    samples), and split_channels=True (reverberate-data --split-channels) gives a dict
+    {entry id: (samples,)} keyed as that data dir's entries: "<new_id>.CH<c>" (c from 1) per RIR
+    channel, new_id alone for a copy without an RIR; entry .CH<c> is channel c - 1 of the former.
+    (For several copies reverberate-data forces prefix="rvb"; give it here too for its ids.)
     """
 
     def __init__(self, data_dir=None, recordings=None, durations=None, **options):
@@ -107,27 +111,32 @@ class Augmenter:
         """The far-field copy of one utterance given its samples: speech (samples,) at fs Hz (a
         (channels, samples) input uses channel 0, with a TsrirWarning). Returns float32 (samples,),
         or with multi_channel_output=True (channels, samples), one channel per channel of the
-        recording's RIR (a microphone array's); a tensor for a tensor input."""
+        recording's RIR (a microphone array's), or with split_channels=True {"<new_id>.CH<c>":
+        (samples,)}; tensors for a tensor input."""
         like = _c.Like(speech)
         x = _c.array(speech, "speech", (1, 2), "(samples,)")
         if x.ndim == 2:
-            if x.shape[0] > 1 and self.options.get("multi_channel_output"):
+            if x.shape[0] > 1 and (self.options.get("multi_channel_output") or self.options.get("split_channels")):
                 # The array's channels come from one speech channel through the RIR's channels; a
                 # multichannel speech would silently lose all but one of its channels.
-                raise ValueError("speech: multi_channel_output makes one output channel per RIR channel from one "
-                                 "speech channel, but speech has %d channels; pass speech[c]" % x.shape[0])
+                raise ValueError("speech: %s makes one output channel per RIR channel from one speech channel, "
+                                 "but speech has %d channels; pass speech[c]"
+                                 % ("multi_channel_output" if self.options.get("multi_channel_output")
+                                    else "split_channels", x.shape[0]))
             if x.shape[0] > 1:
                 _c.warnings.warn("speech has %d channels; using channel 0 (pass speech[c] to choose another)"
                                  % x.shape[0], _c.TsrirWarning, stacklevel=2)
             x = _c.np.ascontiguousarray(x[0])
         y = _c.call(self._impl, x, _c.sample_rate(fs), _c.text(id, "id"),
                     _c.number(copy, "copy", integer=True, minimum=1))
+        if isinstance(y, dict):
+            return {k: like(v) for k, v in y.items()}
         return like(y)
 
     def augment(self, id, copy=1):
         """Reads recording `id`'s wav.scp entry (a path or 'command |') and returns
-        (far-field copy float32 numpy (samples,) -- (channels, samples) with multi_channel_output --,
-        fs int Hz)."""
+        (far-field copy float32 numpy (samples,) -- (channels, samples) with multi_channel_output,
+        {"<new_id>.CH<c>": (samples,)} with split_channels --, fs int Hz)."""
         y, fs = _c.call(self._impl.augment, _c.text(id, "id"), _c.number(copy, "copy", integer=True, minimum=1))
         return y, _c.rate_out(fs)
 
