@@ -124,18 +124,24 @@ void iso_decay(const double* tail, size_t n, double fs, double center_hz, bool u
 // Each band's energy summed from the first sample on (as the level has always been): the bands of
 // a row side by side, so each band's sum runs in its own order and the rows' adds vectorise. The
 // broadband energy (energy_sum(h, 0, n), same order) is added alongside, its chain overlapping.
+__attribute__((target_clones("avx2", "default")))
 std::vector<double> band_totals(const BankEnergies& y, const float* h, size_t n, double* broadband) {
   std::vector<double> total(y.stride, 0.0);
   *broadband = 0.0;
   for (size_t c = 0; c + 8 <= y.stride; c += 8) {
-    double sum[8] = {0, 0, 0, 0, 0, 0, 0, 0};  // in registers across the rows
+    Doubles4 low = {0, 0, 0, 0}, high = {0, 0, 0, 0};  // bands c .. c + 7, kept in registers
     double all = 0.0;
     const double* e = y.energy.data() + c;
     for (size_t i = 0; i < n; ++i, e += y.stride) {
-      for (size_t b = 0; b < 8; ++b) sum[b] += e[b];
+      Doubles4 a, b;
+      std::memcpy(&a, e, sizeof a);
+      std::memcpy(&b, e + 4, sizeof b);
+      low += a;
+      high += b;
       all += (double)h[i] * h[i];
     }
-    std::copy(sum, sum + 8, total.begin() + c);
+    std::memcpy(&total[c], &low, sizeof low);
+    std::memcpy(&total[c + 4], &high, sizeof high);
     *broadband = all;
   }
   total.resize(y.tail.size());
