@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "util/error.h"
@@ -136,6 +137,23 @@ bool is_bandpass_form(const SosFilter& f) {
   return true;
 }
 
+// Filters b0 .. b0 + lanes - 1 (bandpass form, same section count) as per-lane coefficients
+// ([section][lane]) and gains: lanes past the last filter run a harmless stable section with gain 0.
+void pack_bandpass_lanes(const std::vector<SosFilter>& filters, size_t b0, size_t lanes, double* a1, double* a2,
+                         double* gain) {
+  const size_t nb = filters.size(), ns = filters[0].sections.size();
+  for (size_t l = 0; l < lanes; ++l) {
+    const size_t b = b0 + l;
+    double g = 1.0;
+    for (size_t s = 0; s < ns; ++s) {
+      a1[lanes * s + l] = b < nb ? filters[b].sections[s].a1 : 0.0;
+      a2[lanes * s + l] = b < nb ? filters[b].sections[s].a2 : 0.0;
+      if (b < nb) g *= filters[b].sections[s].b0;
+    }
+    gain[l] = b < nb ? g : 0.0;
+  }
+}
+
 __attribute__((target_clones("avx2", "default")))
 void bandpass_lanes(const float* x, size_t n, bool time_reversed, size_t ns, const double* a1_coef,
                     const double* a2_coef, const double* gain_coef, double* const* dst) {
@@ -167,7 +185,116 @@ void bandpass_lanes(const float* x, size_t n, bool time_reversed, size_t ns, con
   }
 }
 
+// Eight lanes (two vectors of four) time-reversed, each output squared and summed from the end as
+// it is made. Per lane the arithmetic is bandpass_lanes' and then a square and an add, in the
+// order a band-by-band loop does them, so the values are the same to the bit; the two groups of
+// four overlap their recursions' latency. The squares go out as whole vectors, sample-major
+// (energy[8 i + lane]); the sums band by band, as the decay analysis reads them. NS > 0 fixes
+// the section count at compile time (the state then stays in registers); NS = 0 takes `ns`.
+template <size_t NS>
+__attribute__((always_inline)) inline void energy_lanes_body(const float* x, size_t n, size_t ns,
+                                                             const double* a1_coef, const double* a2_coef,
+                                                             const double* gain_coef, double* energy,
+                                                             double* const* tail_rows, Lanes* peak) {
+  if (NS > 0) ns = NS;
+  Lanes z1[2][16], z2[2][16], a1[2][16], a2[2][16], gain[2], sum[2], top[2];
+  double* tail[8];
+  for (int l = 0; l < 8; ++l) tail[l] = tail_rows[l];
+  for (int g = 0; g < 2; ++g) {
+    for (size_t s = 0; s < ns; ++s) {
+      const double* c1 = a1_coef + 8 * s + 4 * g;
+      const double* c2 = a2_coef + 8 * s + 4 * g;
+      z1[g][s] = Lanes{0, 0, 0, 0};
+      z2[g][s] = Lanes{0, 0, 0, 0};
+      a1[g][s] = Lanes{c1[0], c1[1], c1[2], c1[3]};
+      a2[g][s] = Lanes{c2[0], c2[1], c2[2], c2[3]};
+    }
+    gain[g] = Lanes{gain_coef[4 * g], gain_coef[4 * g + 1], gain_coef[4 * g + 2], gain_coef[4 * g + 3]};
+    sum[g] = Lanes{0, 0, 0, 0};
+    top[g] = Lanes{0, 0, 0, 0};
+  }
+  for (size_t i = n; i-- > 0;) {
+    const double in = x[i];
+    for (int g = 0; g < 2; ++g) {
+      Lanes v = {in, in, in, in};
+      for (size_t s = 0; s < ns; ++s) {
+        const Lanes o = v + z1[g][s];
+        z1[g][s] = z2[g][s] - a1[g][s] * o;
+        z2[g][s] = -v - a2[g][s] * o;
+        v = o;
+      }
+      v *= gain[g];
+      const Lanes e = v * v;
+      sum[g] += e;
+      top[g] = top[g] < e ? e : top[g];
+      std::memcpy(energy + 8 * i + 4 * g, &e, sizeof e);
+      for (int l = 0; l < 4; ++l) tail[4 * g + l][i] = sum[g][l];
+    }
+  }
+  peak[0] = top[0];
+  peak[1] = top[1];
+}
+
+// Coefficients arrive as plain doubles, as in bandpass_lanes.
+__attribute__((target_clones("avx2", "default")))
+void bandpass_energy_lanes(const float* x, size_t n, size_t ns, const double* a1_coef, const double* a2_coef,
+                           const double* gain_coef, double* energy, double* const* tail, double* peak) {
+  Lanes top[2];
+  if (ns == 3) {  // ANSI order 3, the octave bands' order
+    energy_lanes_body<3>(x, n, ns, a1_coef, a2_coef, gain_coef, energy, tail, top);
+  } else {
+    energy_lanes_body<0>(x, n, ns, a1_coef, a2_coef, gain_coef, energy, tail, top);
+  }
+  std::memcpy(peak, top, sizeof top);
+}
+
 }  // namespace
+
+void sos_filter_bank_energies(const std::vector<SosFilter>& filters, const float* x, size_t n, BankEnergies* out) {
+  const size_t nb = filters.size();
+  out->stride = 8 * ((nb + 7) / 8);
+  out->energy.resize(n * out->stride);  // every value is written below (no fill: a reused buffer)
+  out->tail.resize(nb);
+  out->peak.assign(nb, 0.0);
+  for (size_t b = 0; b < nb; ++b) {
+    out->tail[b].resize(n + 1);
+    out->tail[b][n] = 0.0;
+  }
+  if (nb == 0) return;
+  const size_t ns = filters[0].sections.size();
+  bool bandpass = ns >= 1 && ns <= 16;
+  for (const SosFilter& f : filters) bandpass = bandpass && f.sections.size() == ns && is_bandpass_form(f);
+  if (!bandpass) {
+    // Other filters: the general bank, then the squares and sums in the same order.
+    std::vector<std::vector<double>> y;
+    sos_filter_bank(filters, x, n, /*time_reversed=*/true, &y);
+    std::fill(out->energy.begin(), out->energy.end(), 0.0);
+    for (size_t b = 0; b < nb; ++b) {
+      double* t = out->tail[b].data();
+      for (size_t i = n; i-- > 0;) {
+        const double e = y[b][i] * y[b][i];
+        out->energy[i * out->stride + b] = e;
+        t[i] = t[i + 1] + e;
+        out->peak[b] = std::max(out->peak[b], e);
+      }
+    }
+    return;
+  }
+  std::vector<double> group_energy(nb > 8 ? 8 * n : 0), spare_tail(n + 1);
+  for (size_t b0 = 0; b0 < nb; b0 += 8) {
+    double a1[16 * 8], a2[16 * 8], gain[8], peak[8];
+    double* tail[8];
+    pack_bandpass_lanes(filters, b0, 8, a1, a2, gain);
+    for (size_t l = 0; l < 8; ++l) tail[l] = b0 + l < nb ? out->tail[b0 + l].data() : spare_tail.data();
+    // One group of eight writes the bank's rows directly; more are gathered into them.
+    double* energy = nb > 8 ? group_energy.data() : out->energy.data();
+    bandpass_energy_lanes(x, n, ns, a1, a2, gain, energy, tail, peak);
+    for (size_t l = 0; l < 8 && b0 + l < nb; ++l) out->peak[b0 + l] = peak[l];
+    if (nb > 8) {
+      for (size_t i = 0; i < n; ++i) std::copy_n(&group_energy[8 * i], 8, &out->energy[i * out->stride + b0]);
+    }
+  }
+}
 
 void sos_filter_bank(const std::vector<SosFilter>& filters, const float* x, size_t n, bool time_reversed,
                      std::vector<std::vector<double>>* out) {
@@ -190,18 +317,8 @@ void sos_filter_bank(const std::vector<SosFilter>& filters, const float* x, size
     for (size_t b0 = 0; b0 < nb; b0 += 4) {
       double a1[16 * 4], a2[16 * 4], gain[4];
       double* dst[4];
-      for (size_t l = 0; l < 4; ++l) {
-        const size_t b = b0 + l;
-        double g = 1.0;
-        for (size_t s = 0; s < ns; ++s) {
-          // Unused lanes run a harmless stable section and write to a scratch row.
-          a1[4 * s + l] = b < nb ? filters[b].sections[s].a1 : 0.0;
-          a2[4 * s + l] = b < nb ? filters[b].sections[s].a2 : 0.0;
-          if (b < nb) g *= filters[b].sections[s].b0;
-        }
-        gain[l] = b < nb ? g : 0.0;
-        dst[l] = b < nb ? (*out)[b].data() : spare.data();
-      }
+      pack_bandpass_lanes(filters, b0, 4, a1, a2, gain);
+      for (size_t l = 0; l < 4; ++l) dst[l] = b0 + l < nb ? (*out)[b0 + l].data() : spare.data();
       bandpass_lanes(x, n, time_reversed, ns, a1, a2, gain, dst);
     }
     return;

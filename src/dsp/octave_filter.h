@@ -51,4 +51,19 @@ std::vector<double> sos_filter_reversed(const SosFilter& filter, const std::vect
 void sos_filter_bank(const std::vector<SosFilter>& filters, const float* x, size_t n, bool time_reversed,
                      std::vector<std::vector<double>>* out);
 
+// What Schroeder integration needs of a time-reversed bank, from the same single pass: filtering
+// time-reversed runs from the last sample to the first, as the backward sums do, so each output is
+// squared and added to its band's sum as it is made (no second and third pass over the bands).
+struct BankEnergies {
+  // y_b[i]^2 (y_b as sos_filter_bank(time_reversed)) at energy[i * stride + b], sample-major so the
+  // pass stores whole vectors; stride = the number of bands rounded up to a multiple of 8, the
+  // rest of a row is 0.
+  std::vector<double> energy;
+  size_t stride = 0;
+  std::vector<std::vector<double>> tail;  // tail[b][i] = sum_{k>=i} y_b[k]^2 added from the end; n + 1 values
+  std::vector<double> peak;               // max_i y_b[i]^2
+  double at(size_t b, size_t i) const { return energy[i * stride + b]; }
+};
+void sos_filter_bank_energies(const std::vector<SosFilter>& filters, const float* x, size_t n, BankEnergies* out);
+
 }  // namespace tsrir

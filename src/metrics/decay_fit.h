@@ -31,6 +31,15 @@ DecayFit fit_decay_range(const double* edc, size_t usable_end, double reference,
 DecayFit fit_decay_range(const double* edc, const double* edc_db, size_t usable_end, double reference,
                          double sample_rate_hz, double upper_db, double lower_db);
 
+// Several ranges of one curve at once, fits[r] = fit_decay_range(edc, edc_db, ..., ranges[r]) to the
+// bit: each range's sums are added in their own order, the ranges' additions interleaved (one
+// range's sums are chains of dependent additions; side by side, the chains overlap).
+struct DecayRangeDb {
+  double upper_db = 0.0, lower_db = 0.0;
+};
+void fit_decay_ranges(const double* edc, const double* edc_db, size_t usable_end, double reference,
+                      double sample_rate_hz, const std::vector<DecayRangeDb>& ranges, std::vector<DecayFit>* fits);
+
 // 10*log10(x) for x > 0 in a form the compiler vectorises; absolute error below 1e-9 dB.
 void energy_to_db(const double* x, size_t n, double* db);
 

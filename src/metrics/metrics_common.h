@@ -27,10 +27,10 @@ double energy_sum(const std::vector<float>& h, size_t begin, size_t end);
 // Per-thread buffers reused from one RIR to the next (both definitions): a 1 s RIR needs a few MB
 // of scratch, and fresh allocations of that size cost page faults on every RIR.
 struct MetricsWorkspace {
-  std::vector<std::vector<double>> bands;  // band outputs, squared in place
+  std::vector<std::vector<double>> bands;  // band outputs (irstats)
   std::vector<double> energy;              // broadband squared samples from the onset
   std::vector<double> tail;                // backward sums of the broadband energy
-  std::vector<std::vector<double>> band_tails;  // backward sums of each band's energy
+  BankEnergies band_energies;              // each band's squared samples and their backward sums (iso)
   std::vector<double> db;                  // EDC in dB over the fit ranges
 };
 MetricsWorkspace& metrics_workspace();

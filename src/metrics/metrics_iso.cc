@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "dsp/bands.h"
 #include "metrics/decay_fit.h"
@@ -38,37 +39,52 @@ void backward_sums(const double* energy, size_t n, std::vector<double>* tail) {
   for (size_t i = n; i-- > 0;) t[i] = t[i + 1] + energy[i];
 }
 
-// The same for several curves of one length at once: each sum is a chain of dependent additions
-// (their latency, not the adds, bounds one curve); interleaved, the chains overlap. Each curve's
-// additions and their order are those of backward_sums, so the values are the same to the bit.
-void backward_sums_interleaved(const std::vector<std::vector<double>>& energies, size_t n,
-                               std::vector<std::vector<double>>* tails) {
-  const size_t count = energies.size();
-  tails->resize(count);
-  std::vector<const double*> e(count);
-  std::vector<double*> t(count);
-  for (size_t b = 0; b < count; ++b) {
-    (*tails)[b].resize(n + 1);
-    e[b] = energies[b].data();
-    t[b] = (*tails)[b].data();
-    t[b][n] = 0.0;
-  }
-  for (size_t i = n; i-- > 0;) {
-    for (size_t b = 0; b < count; ++b) t[b][i] = t[b][i + 1] + e[b][i];
-  }
-}
+typedef double Doubles4 __attribute__((vector_size(32)));
+typedef long long Masks4 __attribute__((vector_size(32)));
 
 // The first k in [0, end) with edc[k] <= 0 (or NaN), else `end`: blocks of 8 compared without an
-// early exit (which vectorises), the block holding the first such value scanned one by one.
+// early exit (vector compares), the block holding the first such value scanned one by one.
+__attribute__((target_clones("avx2", "default")))
 size_t first_not_positive(const double* edc, size_t end) {
+  const Doubles4 zero = {0, 0, 0, 0};
   size_t k = 0;
   for (; k + 8 <= end; k += 8) {
-    int bad = 0;
-    for (size_t j = 0; j < 8; ++j) bad |= !(edc[k + j] > 0);
-    if (bad) break;
+    Doubles4 a, b;
+    std::memcpy(&a, edc + k, sizeof a);
+    std::memcpy(&b, edc + k + 4, sizeof b);
+    const Masks4 positive = (a > zero) & (b > zero);  // all ones where both are > 0
+    if (!(positive[0] & positive[1] & positive[2] & positive[3])) break;
   }
   while (k < end && edc[k] > 0) ++k;
   return k;
+}
+
+// edc[k] = (tail[k] - cut) - noise (end - k) + tail_energy for k in [0, end); returns whether every
+// value is > 0. Four at a time as vectors (four wide in the AVX2 clone, which has no FMA, so each
+// value is rounded as the scalar formula rounds it); the counts end - k run as exact doubles.
+__attribute__((target_clones("avx2", "default")))
+bool compensated_edc(const double* tail, size_t end, double cut, double noise, double tail_energy, double* edc) {
+  const Doubles4 zero = {0, 0, 0, 0};
+  const Doubles4 cut4 = {cut, cut, cut, cut}, noise4 = {noise, noise, noise, noise};
+  const Doubles4 tail4 = {tail_energy, tail_energy, tail_energy, tail_energy};
+  const double count = (double)end;
+  Doubles4 counts = {count, count - 1, count - 2, count - 3};
+  Masks4 positive = {-1, -1, -1, -1};
+  size_t k = 0;
+  for (; k + 4 <= end; k += 4) {
+    Doubles4 t;
+    std::memcpy(&t, tail + k, sizeof t);
+    const Doubles4 v = (t - cut4) - noise4 * counts + tail4;
+    std::memcpy(edc + k, &v, sizeof v);
+    positive &= v > zero;
+    counts -= 4.0;
+  }
+  bool all = positive[0] && positive[1] && positive[2] && positive[3];
+  for (; k < end; ++k) {
+    edc[k] = (tail[k] - cut) - noise * (double)(end - k) + tail_energy;
+    all = all && edc[k] > 0;
+  }
+  return all;
 }
 
 // `tail` = backward_sums of the n energies the decay starts with (tail[n] = 0).
@@ -96,40 +112,58 @@ void iso_decay(const double* tail, size_t n, double fs, double center_hz, bool u
     // from flattening the end of the evaluation range (T30 at 47 dB peak-to-noise: +2.9 % with
     // truncation and compensation alone, +1 % with the subtraction too).
     const double noise = d->lundeby.noise_power, cut = tail[end], tail_energy = d->tail_energy;
-    if (end <= size_t(INT32_MAX)) {
-      // The same values through 32-bit counts, whose conversion to double vectorises (SSE2).
-      const int32_t end32 = int32_t(end);
-      for (int32_t k = 0; k < end32; ++k) edc[k] = (tail[k] - cut) - noise * (double)(end32 - k) + tail_energy;
-    } else {
-      for (size_t k = 0; k < end; ++k) edc[k] = (tail[k] - cut) - noise * (double)(end - k) + tail_energy;
-    }
+    const bool positive = compensated_edc(tail, end, cut, noise, tail_energy, edc);
     // Noise fluctuations can drive the last values to zero or below: those are not measured.
-    end = first_not_positive(edc, end);
+    if (!positive) end = first_not_positive(edc, end);
   } else {
     std::copy(tail, tail + end, edc);
   }
   d->usable_end = end;
 }
 
-// Each band's samples squared in place, with its energy (summed from the first sample on) and
-// peak; the bands interleaved, as in backward_sums_interleaved, each sum in its own order.
-void square_bands(std::vector<std::vector<double>>* bands, size_t n, std::vector<double>* total,
-                  std::vector<double>* peak) {
-  const size_t count = bands->size();
-  total->assign(count, 0.0);
-  peak->assign(count, 0.0);
-  std::vector<double*> y(count);
-  for (size_t b = 0; b < count; ++b) y[b] = (*bands)[b].data();
-  double* sum = total->data();
-  double* top = peak->data();
-  for (size_t i = 0; i < n; ++i) {
-    for (size_t b = 0; b < count; ++b) {
-      const double v = y[b][i] * y[b][i];
-      y[b][i] = v;
-      sum[b] += v;
-      top[b] = std::max(top[b], v);
+// Each band's energy summed from the first sample on (as the level has always been): the bands of
+// a row side by side, so each band's sum runs in its own order and the rows' adds vectorise. The
+// broadband energy (energy_sum(h, 0, n), same order) is added alongside, its chain overlapping.
+__attribute__((target_clones("avx2", "default")))
+std::vector<double> band_totals(const BankEnergies& y, const float* h, size_t n, double* broadband) {
+  std::vector<double> total(y.stride, 0.0);
+  *broadband = 0.0;
+  for (size_t c = 0; c + 8 <= y.stride; c += 8) {
+    Doubles4 low = {0, 0, 0, 0}, high = {0, 0, 0, 0};  // bands c .. c + 7, kept in registers
+    double all = 0.0;
+    const double* e = y.energy.data() + c;
+    for (size_t i = 0; i < n; ++i, e += y.stride) {
+      Doubles4 a, b;
+      std::memcpy(&a, e, sizeof a);
+      std::memcpy(&b, e + 4, sizeof b);
+      low += a;
+      high += b;
+      all += (double)h[i] * h[i];
     }
+    std::memcpy(&total[c], &low, sizeof low);
+    std::memcpy(&total[c + 4], &high, sizeof high);
+    *broadband = all;
   }
+  total.resize(y.tail.size());
+  return total;
+}
+
+// max_i h[i]^2 (exact: a maximum does not depend on the order), four at a time as vectors.
+__attribute__((target_clones("avx2", "default")))
+double peak_energy(const float* h, size_t n) {
+  typedef float Floats4 __attribute__((vector_size(16)));
+  Doubles4 top = {0, 0, 0, 0};
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    Floats4 x;
+    std::memcpy(&x, h + i, sizeof x);
+    const Doubles4 d = __builtin_convertvector(x, Doubles4);
+    const Doubles4 e = d * d;
+    top = top < e ? e : top;
+  }
+  double peak = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
+  for (; i < n; ++i) peak = std::max(peak, (double)h[i] * h[i]);
+  return peak;
 }
 
 // Energy from sample `k` (relative to the onset) to the end, noise-compensated: inside the
@@ -180,13 +214,20 @@ BandMetrics iso_band_metrics(const IsoDecay& d, double center_hz, double fs, boo
   energy_to_db(d.edc.data(), span, db->data());
   // ISO 3382-1: the bottom of an evaluation range must lie >= 10 dB above the noise, so T30 needs
   // 45 dB and T20 35 dB of peak-to-noise ratio, EDT 20 dB.
-  auto fit = [&](double upper_db, double lower_db) -> double {
-    if (std::isfinite(psnr) && psnr < -lower_db + 10.0) return kNaN;
-    return fit_decay_range(d.edc.data(), db->data(), d.usable_end, d.edc[0], fs, upper_db, lower_db).decay_time_s();
-  };
-  b.edt_s = fit(0.0, -10.0);
-  b.t20_s = fit(-5.0, -25.0);
-  b.t30_s = fit(-5.0, -35.0);
+  // EDT, T20, T30, the measurable ones fitted together (fit_decay_ranges).
+  const DecayRangeDb ranges[3] = {{0.0, -10.0}, {-5.0, -25.0}, {-5.0, -35.0}};
+  double* decay_s[3] = {&b.edt_s, &b.t20_s, &b.t30_s};
+  std::vector<DecayRangeDb> measurable;
+  std::vector<double*> results;
+  for (int r = 0; r < 3; ++r) {
+    *decay_s[r] = kNaN;
+    if (std::isfinite(psnr) && psnr < -ranges[r].lower_db + 10.0) continue;
+    measurable.push_back(ranges[r]);
+    results.push_back(decay_s[r]);
+  }
+  std::vector<DecayFit> fits;
+  fit_decay_ranges(d.edc.data(), db->data(), d.usable_end, d.edc[0], fs, measurable, &fits);
+  for (size_t k = 0; k < fits.size(); ++k) *results[k] = fits[k].decay_time_s();
   const std::string range = std::isfinite(psnr) ? " (peak-to-noise " + format_double(psnr, 3) + " dB)" : "";
   if (std::isfinite(b.t30_s)) {
     b.rt_s = b.t30_s;
@@ -208,14 +249,10 @@ RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
   const size_t n = h.size();
   const double fs = rir.sample_rate_hz;
 
-  double peak_e = -1;
-  for (size_t i = 0; i < n; ++i) {
-    const double e = (double)h[i] * h[i];
-    if (e > peak_e) {
-      peak_e = e;
-      m.peak_sample = i;
-    }
-  }
+  const double peak_e = peak_energy(h.data(), n);
+  // The first sample at the peak (as a strict > search keeps it).
+  m.peak_sample = 0;
+  while ((double)h[m.peak_sample] * h[m.peak_sample] != peak_e) ++m.peak_sample;
   const double onset_level = peak_e * std::pow(10.0, -o.onset_threshold_db / 10.0);
   m.onset_sample = 0;
   while (m.onset_sample < n && (double)h[m.onset_sample] * h[m.onset_sample] < onset_level) ++m.onset_sample;
@@ -254,23 +291,22 @@ RirMetrics measure_iso(const Signal& rir, const MetricsOptions& o) {
 
   // Octave bands, filtered time-reversed in one pass over the RIR.
   const std::vector<double> centers = metrics_band_centers_hz(fs, MetricsDefinition::kIso);
-  std::vector<std::vector<double>>& y = w.bands;
-  sos_filter_bank(band_filters(fs, centers), h.data(), n, /*time_reversed=*/true, &y);
+  // Squared and integrated backwards in the same pass (the Schroeder sums run the same way).
+  BankEnergies& y = w.band_energies;
+  sos_filter_bank_energies(band_filters(fs, centers), h.data(), n, &y);
   IsoDecay& d = bb;  // the broadband curve is no longer needed
-  const double total = energy_sum(h, 0, n);
-  std::vector<double> band_total, band_peak;
-  square_bands(&y, n, &band_total, &band_peak);
-  backward_sums_interleaved(y, n, &w.band_tails);
+  double total = 0.0;
+  const std::vector<double> band_total = band_totals(y, h.data(), n, &total);
   for (size_t b = 0; b < centers.size(); ++b) {
     const std::string label = band_name(centers[b]);
     // Time-reversed filtering moves part of the band's direct sound ahead of the broadband onset;
     // the band EDC starts at the band's own onset when that is earlier, so all of it is counted
     // (otherwise E(0) is too small, the -5 dB point moves into the later, often slower decay and
     // T30 comes out long: +2 % on average over the R3VIVAL set, up to +5.5 %).
-    const double band_onset_level = band_peak[b] * std::pow(10.0, -o.onset_threshold_db / 10.0);
+    const double band_onset_level = y.peak[b] * std::pow(10.0, -o.onset_threshold_db / 10.0);
     size_t start = 0;
-    while (start < onset && y[b][start] < band_onset_level) ++start;
-    iso_decay(w.band_tails[b].data() + start, n - start, fs, centers[b], o.lundeby, label, &m.warnings, &d);
+    while (start < onset && y.at(b, start) < band_onset_level) ++start;
+    iso_decay(y.tail[b].data() + start, n - start, fs, centers[b], o.lundeby, label, &m.warnings, &d);
     BandMetrics bm = iso_band_metrics(d, centers[b], fs, o.lundeby, label, &m.warnings, &w.db);
     bm.level_db = band_total[b] > 0 ? 10.0 * std::log10(band_total[b] / total) : -INFINITY;
     // ISO 3382-1: time-reversed filtering stays unbiased for bandwidth * T > 4.

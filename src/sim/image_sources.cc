@@ -178,6 +178,15 @@ double image_transition_time_s(const RoomSpec& room, double num_images) {
   return std::max(radius_m / room.speed_of_sound_m_s, direct_s + 1e-3);
 }
 
+namespace {
+// out[k] += g * taps[k] for all 2 kHalfTaps taps: a fixed count the compiler turns into whole
+// vectors (eight floats in the AVX2 clone, no FMA there, so the sums are those of the scalar loop).
+__attribute__((target_clones("avx2", "default")))
+void add_scaled_taps(float g, const float* taps, float* out) {
+  for (int k = 0; k < 2 * kHalfTaps; ++k) out[k] += g * taps[k];
+}
+}  // namespace
+
 void add_fractional_impulse(double position, const BandValues& gain, BandSignals& bands) {
   const KernelTable& table = kernel_table();
   const long base = static_cast<long>(std::floor(position));
@@ -191,7 +200,11 @@ void add_fractional_impulse(double position, const BandValues& gain, BandSignals
     const float g = static_cast<float>(gain[b]);
     if (g == 0.0f) continue;
     float* out = bands.band[b].data() + first;
-    for (int k = k_begin; k < k_end; ++k) out[k] += g * taps[k];
+    if (k_begin == 0 && k_end == 2 * kHalfTaps) {
+      add_scaled_taps(g, taps, out);  // every tap inside the RIR: the usual case
+    } else {
+      for (int k = k_begin; k < k_end; ++k) out[k] += g * taps[k];
+    }
   }
 }
 

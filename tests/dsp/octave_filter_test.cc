@@ -7,6 +7,7 @@
 #include <complex>
 #include <random>
 
+#include "dsp/bands.h"
 #include "util/error.h"
 
 namespace tsrir {
@@ -110,6 +111,52 @@ TEST(OctaveFilter, BankEqualsSingleFiltersForwardAndReversed) {
       for (size_t n = 0; n < x.size(); ++n) ASSERT_NEAR(out[b][n], single[n], 1e-12) << b << " " << n;
     }
   }
+}
+
+// sos_filter_bank_energies against the bank's time-reversed output squared and summed from the end
+// by plain loops: the same values to the bit (the decay analysis' results rest on that), for one
+// group of eight lanes, for two (ten bands), and for filters outside the bandpass form.
+void expect_energies_of_bank(const std::vector<SosFilter>& filters, const std::vector<float>& x) {
+  std::vector<std::vector<double>> y;
+  sos_filter_bank(filters, x.data(), x.size(), /*time_reversed=*/true, &y);
+  BankEnergies e;
+  sos_filter_bank_energies(filters, x.data(), x.size(), &e);
+  ASSERT_EQ(e.tail.size(), filters.size());
+  ASSERT_EQ(e.peak.size(), filters.size());
+  ASSERT_GE(e.stride, filters.size());
+  for (size_t b = 0; b < filters.size(); ++b) {
+    ASSERT_EQ(e.tail[b].size(), x.size() + 1);
+    double sum = 0.0, peak = 0.0;
+    EXPECT_EQ(e.tail[b][x.size()], 0.0);
+    for (size_t i = x.size(); i-- > 0;) {
+      const double energy = y[b][i] * y[b][i];
+      sum += energy;
+      peak = std::max(peak, energy);
+      ASSERT_EQ(e.at(b, i), energy) << b << " " << i;
+      ASSERT_EQ(e.tail[b][i], sum) << b << " " << i;
+    }
+    EXPECT_EQ(e.peak[b], peak) << b;
+    EXPECT_GT(peak, 0.0);
+  }
+}
+
+TEST(OctaveFilter, BankEnergiesAreTheBankSquaredAndSummedFromTheEnd) {
+  std::mt19937 gen(11);
+  std::normal_distribution<float> normal;
+  std::vector<float> x(2501);
+  for (float& v : x) v = normal(gen);
+  std::vector<SosFilter> seven, ten;
+  for (double fc : kOctaveCentersHz) {
+    if (fc < 8000.0) seven.push_back(ansi_octave_filter(fc, 16000.0, 3));
+  }
+  for (double fc : {31.25, 62.5, 125.0, 250.0, 500.0, 1000.0, 2000.0, 4000.0, 8000.0, 11000.0}) {
+    ten.push_back(ansi_octave_filter(fc, 48000.0, 2));
+  }
+  expect_energies_of_bank(seven, x);
+  expect_energies_of_bank(ten, x);
+  std::vector<SosFilter> general = seven;
+  for (SosFilter& f : general) f.sections[0].b1 = 0.25;  // no longer b0 (1 - z^-2)
+  expect_energies_of_bank(general, x);
 }
 
 TEST(OctaveFilter, TimeReversedFilteringIsTheMirrorImage) {
