@@ -59,7 +59,6 @@ inline bool put_sample(char* dst, float v, bool is_float, long long* clipped) {
 // it lets the compiler evaluate float selects unconditionally; no value changes).
 bool int16_block_in_place(const float* in, size_t count, char* dst, long long* clipped) {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-  int16_t* out = reinterpret_cast<int16_t*>(dst);  // char storage of a vector<char>: 2-byte aligned
   int bad = 0;
   long long over_total = 0;
   constexpr size_t kChunk = size_t{1} << 20;  // an int count per chunk cannot overflow
@@ -73,7 +72,8 @@ bool int16_block_in_place(const float* in, size_t count, char* dst, long long* c
       over += (s > 32767.0f) | (s < -32768.0f);
       s = s > -32768.0f ? s : -32768.0f;
       s = s < 32767.0f ? s : 32767.0f;
-      out[first + i] = static_cast<int16_t>(static_cast<int>(s));
+      const int16_t q = static_cast<int16_t>(static_cast<int>(s));
+      std::memcpy(dst + 2 * (first + i), &q, 2);  // dst may be at any byte: no int16_t* on it
     }
     over_total += over;
   }
