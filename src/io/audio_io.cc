@@ -197,7 +197,7 @@ void fill_info(const PlainWavLayout& layout, AudioInfo* info) {
 AudioInfo probe_audio(const std::string& path) {
   MappedFile mapped;
   PlainWavLayout layout;
-  if (mapped.open(path) && parse_plain_wav(mapped.data(), mapped.size(), &layout)) {
+  if (mapped.open(path, /*populate=*/false) && parse_plain_wav(mapped.data(), mapped.size(), &layout)) {
     AudioInfo info;
     fill_info(layout, &info);
     return info;
@@ -247,9 +247,14 @@ std::vector<std::vector<float>> read_audio_channels_prefix(const std::string& rx
   {
     MappedFile mapped;
     PlainWavLayout layout;
-    if (mapped.open(rx) && parse_plain_wav(mapped.data(), mapped.size(), &layout)) {
+    // A prefix (a 30 s noise cut to a 10 s utterance) prefaults only the samples it decodes.
+    const bool whole = max_frames == static_cast<size_t>(-1);
+    if (mapped.open(rx, whole) && parse_plain_wav(mapped.data(), mapped.size(), &layout)) {
       // Integer samples cannot be NaN or Inf: a prefix needs no look at the rest.
       const size_t count = layout.is_float ? layout.frames : std::min(layout.frames, max_frames);
+      if (!whole)
+        mapped.populate_range(layout.data_offset,
+                              count * static_cast<size_t>(layout.channels) * static_cast<size_t>(layout.bits / 8));
       std::vector<std::vector<float>> channels;
       decode_plain_wav(mapped.data(), layout, 0, count, name, &channels);
       fill_info(layout, info);

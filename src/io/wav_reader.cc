@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -172,16 +173,16 @@ MappedFile::~MappedFile() {
   if (data_) munmap(const_cast<char*>(data_), size_);
 }
 
-bool MappedFile::open(const std::string& path) {
+bool MappedFile::open(const std::string& path, bool populate) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) return false;
   struct stat st;
   bool ok = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0;
   if (ok) {
     // Small files (the usual utterance, RIR or noise) are mapped in one go rather than page by page
-    // on first touch; a long recording that is only probed stays unread.
+    // on first touch; a long recording, or any file that is only probed, stays unread.
     constexpr off_t kPopulateLimit = 64 << 20;
-    const int flags = MAP_PRIVATE | (st.st_size <= kPopulateLimit ? MAP_POPULATE : 0);
+    const int flags = MAP_PRIVATE | (populate && st.st_size <= kPopulateLimit ? MAP_POPULATE : 0);
     void* p = mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, flags, fd, 0);
     ok = p != MAP_FAILED;
     if (ok) {
@@ -191,6 +192,18 @@ bool MappedFile::open(const std::string& path) {
   }
   ::close(fd);
   return ok;
+}
+
+void MappedFile::populate_range(size_t offset, size_t length) const {
+#ifdef MADV_POPULATE_READ
+  if (!data_ || offset >= size_ || length == 0) return;
+  const uintptr_t page = static_cast<uintptr_t>(sysconf(_SC_PAGESIZE));
+  const uintptr_t begin = reinterpret_cast<uintptr_t>(data_ + offset) & ~(page - 1);
+  const uintptr_t end = reinterpret_cast<uintptr_t>(data_ + offset + std::min(length, size_ - offset));
+  madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_READ);  // advice: failure is harmless
+#else
+  (void)offset, (void)length;
+#endif
 }
 
 }  // namespace tsrir

@@ -44,7 +44,12 @@ class MappedFile {
   MappedFile& operator=(const MappedFile&) = delete;
   // False when `path` cannot be opened, is not a non-empty regular file, or cannot be mapped: the
   // caller then takes the libsndfile path, whose messages say why.
-  bool open(const std::string& path);
+  // populate = false maps without prefaulting: for a caller that reads only the header (a probe)
+  // or a part it then asks for with populate_range().
+  bool open(const std::string& path, bool populate = true);
+  // Prefaults [offset, offset + length) (clipped to the file) where the kernel can (Linux >= 5.14);
+  // otherwise the pages fault in on first touch, as they would anyway.
+  void populate_range(size_t offset, size_t length) const;
   const char* data() const { return data_; }
   size_t size() const { return size_; }
 

@@ -147,3 +147,28 @@ TEST(WavWriterRounding, Int16IsNearbyintThenClip) {
   }
   EXPECT_EQ(clipped, want_clipped);
 }
+
+// A NaN or Inf sample is an error naming its frame, and the bytes appended before it stay, as
+// written sample by sample (the int16 block path hands such a block back to the per-sample one).
+TEST(WavWriterRounding, Int16NonFiniteNamesItsFrameAndKeepsWhatCameBefore) {
+  for (float bad : {std::nanf(""), INFINITY, -INFINITY}) {
+    std::vector<float> v(100);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = 0.001f * static_cast<float>(i) - 0.03f;
+    v[57] = bad;
+    std::vector<char> bytes = {'x', 'y'};  // what an earlier block left
+    long long clipped = 7;
+    try {
+      append_wav_frames(v.data(), v.size() / 2, 2, SampleFormat::kInt16, 1000, &bytes, &clipped);
+      FAIL() << "no error for " << bad;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("NaN or Inf sample at frame 1028"), std::string::npos) << e.what();
+    }
+    ASSERT_EQ(bytes.size(), 2u + 2 * 57);
+    EXPECT_EQ(clipped, 7);
+    for (size_t i = 0; i < 57; ++i) {
+      const int got = static_cast<int16_t>(static_cast<uint16_t>(static_cast<unsigned char>(bytes[2 + 2 * i]) |
+                                                                  (static_cast<unsigned char>(bytes[3 + 2 * i]) << 8)));
+      EXPECT_EQ(got, static_cast<int>(std::nearbyint(v[i] * 32768.0f))) << i;
+    }
+  }
+}
