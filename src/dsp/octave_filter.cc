@@ -5,6 +5,7 @@
 #include <cstring>
 #include <string>
 
+#include "util/cpu_clones.h"
 #include "util/error.h"
 
 namespace tsrir {
@@ -154,7 +155,7 @@ void pack_bandpass_lanes(const std::vector<SosFilter>& filters, size_t b0, size_
   }
 }
 
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 void bandpass_lanes(const float* x, size_t n, bool time_reversed, size_t ns, const double* a1_coef,
                     const double* a2_coef, const double* gain_coef, double* const* dst) {
   // Coefficients arrive as plain doubles ([section][lane]): vector-typed parameters would tie
@@ -236,7 +237,7 @@ __attribute__((always_inline)) inline void energy_lanes_body(const float* x, siz
 }
 
 // Coefficients arrive as plain doubles, as in bandpass_lanes.
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 void bandpass_energy_lanes(const float* x, size_t n, size_t ns, const double* a1_coef, const double* a2_coef,
                            const double* gain_coef, double* energy, double* const* tail, double* peak) {
   Lanes top[2];

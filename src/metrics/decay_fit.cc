@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "util/cpu_clones.h"
+
 namespace tsrir {
 
 std::vector<double> backward_integral(const double* energy, size_t n, double tail_energy) {
@@ -35,7 +37,7 @@ double DecayFit::decay_time_s() const {
 
 // The AVX2 clone runs the same operations four wide (no FMA: the target does not enable it, so
 // every value is rounded as in the default clone): the same dB values to the bit, in half the time.
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 void energy_to_db(const double* x, size_t n, double* db) {
   // log via an exponent/mantissa split with the mantissa in [sqrt(1/2), sqrt(2)) and the atanh
   // series of the mantissa. Integer steps only (64-bit add/shift/and, the 2^52 magic number for

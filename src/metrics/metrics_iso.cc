@@ -11,6 +11,7 @@
 #include "metrics/decay_fit.h"
 #include "metrics/lundeby.h"
 #include "metrics/metrics_common.h"
+#include "util/cpu_clones.h"
 #include "util/error.h"
 #include "util/strings.h"
 
@@ -44,7 +45,7 @@ typedef long long Masks4 __attribute__((vector_size(32)));
 
 // The first k in [0, end) with edc[k] <= 0 (or NaN), else `end`: blocks of 8 compared without an
 // early exit (vector compares), the block holding the first such value scanned one by one.
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 size_t first_not_positive(const double* edc, size_t end) {
   const Doubles4 zero = {0, 0, 0, 0};
   size_t k = 0;
@@ -62,7 +63,7 @@ size_t first_not_positive(const double* edc, size_t end) {
 // edc[k] = (tail[k] - cut) - noise (end - k) + tail_energy for k in [0, end); returns whether every
 // value is > 0. Four at a time as vectors (four wide in the AVX2 clone, which has no FMA, so each
 // value is rounded as the scalar formula rounds it); the counts end - k run as exact doubles.
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 bool compensated_edc(const double* tail, size_t end, double cut, double noise, double tail_energy, double* edc) {
   const Doubles4 zero = {0, 0, 0, 0};
   const Doubles4 cut4 = {cut, cut, cut, cut}, noise4 = {noise, noise, noise, noise};
@@ -124,7 +125,7 @@ void iso_decay(const double* tail, size_t n, double fs, double center_hz, bool u
 // Each band's energy summed from the first sample on (as the level has always been): the bands of
 // a row side by side, so each band's sum runs in its own order and the rows' adds vectorise. The
 // broadband energy (energy_sum(h, 0, n), same order) is added alongside, its chain overlapping.
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 std::vector<double> band_totals(const BankEnergies& y, const float* h, size_t n, double* broadband) {
   std::vector<double> total(y.stride, 0.0);
   *broadband = 0.0;
@@ -149,7 +150,7 @@ std::vector<double> band_totals(const BankEnergies& y, const float* h, size_t n,
 }
 
 // max_i h[i]^2 (exact: a maximum does not depend on the order), four at a time as vectors.
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 double peak_energy(const float* h, size_t n) {
   typedef float Floats4 __attribute__((vector_size(16)));
   Doubles4 top = {0, 0, 0, 0};

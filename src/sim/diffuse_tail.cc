@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dsp/fft.h"
+#include "util/cpu_clones.h"
 #include "util/error.h"
 
 namespace tsrir::sim {
@@ -131,7 +132,7 @@ typedef float Floats4 __attribute__((vector_size(16)));
 // clone), so the samples are the same.
 // TailEnvelopes::render's loops: the bands' envelopes as two vectors of four lanes; unused lanes
 // run with zeros into a scratch row (eight stores a sample, no test of the count).
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 void render_tail_lanes(const float* white, size_t first, size_t transition, size_t n,
                        const double* amp0, const double* amp_step0, const double* spec0,
                        const double* spec_step0, float* const* rows) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "util/cpu_clones.h"
 #include "util/error.h"
 
 namespace tsrir::sim {
@@ -181,7 +182,7 @@ double image_transition_time_s(const RoomSpec& room, double num_images) {
 namespace {
 // out[k] += g * taps[k] for all 2 kHalfTaps taps: a fixed count the compiler turns into whole
 // vectors (eight floats in the AVX2 clone, no FMA there, so the sums are those of the scalar loop).
-__attribute__((target_clones("avx2", "default")))
+TSRIR_AVX2_CLONES
 void add_scaled_taps(float g, const float* taps, float* out) {
   for (int k = 0; k < 2 * kHalfTaps; ++k) out[k] += g * taps[k];
 }
