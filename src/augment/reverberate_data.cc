@@ -450,19 +450,21 @@ long long write_one_wav(const RecordingPlan& recording, const std::string& in_di
   }
   log_info(where + ": longer than " + format_double(options.max_in_memory_s) +
            " s: reverberated in passes over the file (memory independent of its length)");
-  const std::shared_ptr<const PreparedRir> rir = renderer.speech_rir(recording, rate);
-  std::vector<StreamChannel> channels(1);
-  channels[0].rir = rir.get();
-  channels[0].additive = renderer.additive_signals(recording, rate, recording.rir >= 0 ? recording.rir_channel : -1);
-  // --multi-channel-output: one stream channel per RIR channel (kept alive while streaming).
+  // --multi-channel-output: one stream channel per RIR channel, else one (both kept alive while
+  // streaming).
   const std::shared_ptr<const PlanRenderer::RirChannels> array =
       options.multi_channel_output ? renderer.rir_channels(recording.rir, rate) : nullptr;
-  if (options.multi_channel_output && array) {
-    channels.assign(array->size(), StreamChannel());
+  std::shared_ptr<const PreparedRir> rir;
+  std::vector<StreamChannel> channels(array ? array->size() : 1);
+  if (array) {
     for (size_t c = 0; c < array->size(); ++c) {
       channels[c].rir = (*array)[c].get();
       channels[c].additive = renderer.additive_signals(recording, rate, static_cast<int>(c));
     }
+  } else {
+    rir = renderer.speech_rir(recording, rate);
+    channels[0].rir = rir.get();
+    channels[0].additive = renderer.additive_signals(recording, rate, recording.rir >= 0 ? recording.rir_channel : -1);
   }
   StreamSettings settings;
   settings.temp_base = wav_path + ".spill";
