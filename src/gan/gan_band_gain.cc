@@ -27,15 +27,6 @@ double crossfade(double hz, double edge_hz) {
   return 0.5 - 0.5 * std::cos(M_PI * u);
 }
 
-torch::Tensor responses_tensor(int64_t fft_length) {
-  const auto rows = band_gain_responses(fft_length);
-  torch::Tensor t = torch::empty({int64_t(rows.size()), int64_t(rows[0].size())});
-  for (size_t b = 0; b < rows.size(); ++b) {
-    std::memcpy(t[int64_t(b)].data_ptr<float>(), rows[b].data(), rows[b].size() * sizeof(float));
-  }
-  return t;
-}
-
 }  // namespace
 
 std::vector<std::vector<float>> band_gain_responses(int64_t fft_length) {
@@ -53,6 +44,15 @@ std::vector<std::vector<float>> band_gain_responses(int64_t fft_length) {
     }
   }
   return out;
+}
+
+torch::Tensor band_gain_response_tensor(int64_t fft_length) {
+  const auto rows = band_gain_responses(fft_length);
+  torch::Tensor t = torch::empty({int64_t(rows.size()), int64_t(rows[0].size())});
+  for (size_t b = 0; b < rows.size(); ++b) {
+    std::memcpy(t[int64_t(b)].data_ptr<float>(), rows[b].data(), rows[b].size() * sizeof(float));
+  }
+  return t;
 }
 
 KnotPosition knot_positions(const torch::Tensor& onset, int64_t length, double sample_rate_hz) {
@@ -86,7 +86,7 @@ BandGainImpl::BandGainImpl(int feature_channels) {
   head->weight.zero_();
   head->bias.zero_();
   fft_length_ = 18432;  // 2^11 * 9 >= 16384 + kGuardSamples
-  responses_ = register_buffer("band_responses", responses_tensor(fft_length_));
+  responses_ = register_buffer("band_responses", band_gain_response_tensor(fft_length_));
 }
 
 torch::Tensor BandGainImpl::knot_log_gains(const torch::Tensor& features) {
@@ -112,7 +112,7 @@ torch::Tensor BandGainImpl::band_signals(const torch::Tensor& input) {
   int64_t fft_length = fft_length_;
   if (n != kSliceLength) {  // other lengths (tests): responses for their own FFT length
     fft_length = n + kGuardSamples;
-    responses = responses_tensor(fft_length).to(input.device());
+    responses = band_gain_response_tensor(fft_length).to(input.device());
   }
   // float32: the CPU FFT has no bfloat16.
   const torch::Tensor spectrum = torch::fft::rfft(input.to(torch::kFloat), fft_length, -1);  // [batch, 1, bins]

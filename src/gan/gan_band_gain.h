@@ -47,6 +47,8 @@ constexpr double kMaxGainDb = 24.0;
 // The band responses on the bins of a real FFT of `fft_length` at 16 kHz: [bands][bins], each >= 0,
 // summing to 1 at every bin.
 std::vector<std::vector<float>> band_gain_responses(int64_t fft_length);
+// The same as a float32 tensor [bands, bins].
+torch::Tensor band_gain_response_tensor(int64_t fft_length);
 
 // Where each sample lies among the knots, for onsets [batch, 1, 1] (sample index): the segment
 // [knot k, knot k+1] holding it and how far along it (0..1), both [batch, 1, length]; samples

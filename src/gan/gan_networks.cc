@@ -21,21 +21,6 @@ namespace {
 constexpr const char* kCheckpointTag = "tsrir-ts-rirgan-checkpoint-v1";
 constexpr double kResidualInitGain = 0.1;
 
-// `fan` is the number of inputs summed into one output (in*k for a conv, in*k/stride for the
-// transposed conv), used by kHe only.
-void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double fan) {
-  torch::NoGradGuard no_grad;
-  if (init == GanInit::kHe) {
-    const double limit = std::sqrt(6.0 / fan);  // uniform, variance 2/fan (ReLU gain)
-    weight.uniform_(-limit, limit);
-  } else {
-    // Glorot's limit depends on fan_in + fan_out only, so torch's [out, in, k] and TF's
-    // [k, in, out] layouts give the same distribution.
-    torch::nn::init::xavier_uniform_(weight);
-  }
-  torch::nn::init::zeros_(bias);
-}
-
 std::string archive_key(const std::string& network, const std::string& parameter) {
   std::string key = network + "__" + parameter;
   std::replace(key.begin(), key.end(), '.', '_');
@@ -111,6 +96,19 @@ int64_t fast_fft_length(int64_t n) {
 }
 
 }  // namespace
+
+void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double fan) {
+  torch::NoGradGuard no_grad;
+  if (init == GanInit::kHe) {
+    const double limit = std::sqrt(6.0 / fan);  // uniform, variance 2/fan (ReLU gain)
+    weight.uniform_(-limit, limit);
+  } else {
+    // Glorot's limit depends on fan_in + fan_out only, so torch's [out, in, k] and TF's
+    // [k, in, out] layouts give the same distribution.
+    torch::nn::init::xavier_uniform_(weight);
+  }
+  torch::nn::init::zeros_(bias);
+}
 
 SameConv1dImpl::SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
                                GanInit init)
@@ -371,7 +369,7 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
   return output * (input_peak / std::get<0>(output.abs().max(-1, true)).clamp_min(1e-8));
 }
 
-DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init) {
+DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init, GanDiscView view) {
   int in = 1;
   for (int i = 0; i < 5; ++i) {
     const int out = width << i;
@@ -382,12 +380,16 @@ DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init)
   output_ = register_module("output", torch::nn::Linear(16 * in, 1));
   // The linear logit keeps Glorot under either init (no ReLU follows it).
   init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
+  // Built after the waveform layers, so those draw the same initial weights with either view.
+  if (view == GanDiscView::kWaveformEnvelope) envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init));
 }
 
 torch::Tensor DiscriminatorImpl::forward(torch::Tensor x) {
+  const torch::Tensor envelope_logit = envelope_ ? envelope_->forward(x) : torch::Tensor();
   for (auto& layer : down_) x = torch::leaky_relu(layer->forward(x), 0.2);
   x = x.transpose(1, 2).reshape({x.size(0), -1});
-  return output_->forward(x).squeeze(1);
+  const torch::Tensor logit = output_->forward(x).squeeze(1);
+  return envelope_ ? logit + envelope_logit.to(logit.scalar_type()) : logit;
 }
 
 TfRmsProp::TfRmsProp(std::vector<torch::Tensor> params, double learning_rate, double decay, double epsilon,
@@ -412,8 +414,8 @@ CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   const GanInit init = s.init;
   g_real = make_generator(s, init);
   g_synthetic = make_generator(s, init);
-  d_real = Discriminator(s.width, s.kernel_length, init);
-  d_synthetic = Discriminator(s.width, s.kernel_length, init);
+  d_real = Discriminator(s.width, s.kernel_length, init, s.disc_view);
+  d_synthetic = Discriminator(s.width, s.kernel_length, init, s.disc_view);
   torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
   for (auto* m : modules) {
     m->to(device);

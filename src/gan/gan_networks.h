@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gan/compute_device.h"
+#include "gan/gan_band_envelope.h"
 #include "gan/gan_band_gain.h"
 #include "gan/gan_settings.h"
 
@@ -17,7 +18,9 @@ namespace gan {
 // Glorot-uniform). kHe (He-uniform, ReLU gain, fan = the inputs summed per output) is a departure
 // for small CPU models: with Glorot the 13 un-normalised ReLU layers shrink the signal by ~3e-4, so
 // a generator's output starts near zero and does not depend on its input for hundreds of steps.
-// Biases start at zero.
+// Biases start at zero. `fan` is the number of inputs summed into one output (in*k for a conv,
+// in*k/stride for the transposed conv), used by kHe only.
+void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double fan);
 
 // tf.layers.conv1d(padding='SAME'): out = ceil(L/s), pad_total = max((out-1)s + k - L, 0), the
 // smaller half on the left. Cross-correlation, bias, Glorot-uniform kernel, zero bias.
@@ -131,14 +134,18 @@ TORCH_MODULE(Generator);
 
 // D_R / D_S (WaveGAN): 5 stride-4 convs (w .. 16w) with LeakyReLU 0.2, flatten in TF's
 // [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
+// view kWaveformEnvelope (a departure): plus gan_band_envelope.h's critic of the band levels in
+// dB, whose logit is added to the waveform's.
 class DiscriminatorImpl : public torch::nn::Module {
  public:
-  DiscriminatorImpl(int width, int kernel_length, GanInit init = GanInit::kGlorot);
+  DiscriminatorImpl(int width, int kernel_length, GanInit init = GanInit::kGlorot,
+                    GanDiscView view = GanDiscView::kWaveform);
   torch::Tensor forward(torch::Tensor x);
 
  private:
   std::vector<SameConv1d> down_;
   torch::nn::Linear output_{nullptr};
+  EnvelopeCritic envelope_{nullptr};
 };
 TORCH_MODULE(Discriminator);
 

@@ -21,7 +21,7 @@ const std::vector<std::string> kFileOrder = {
     "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
     "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
     "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
-    "generator_update", "disc_augment", "precision", "warmup_steps", "real_list", "synthetic_list"};
+    "generator_update", "disc_augment", "disc_view", "precision", "warmup_steps", "real_list", "synthetic_list"};
 
 SettingsStyle file_style() {
   SettingsStyle style;
@@ -45,7 +45,7 @@ SettingsFile every_key_file(GanSettings* settings) {
 SettingsFile bound_file(GanSettings* settings) {
   SettingsFile file = every_key_file(settings);
   GanSettings defaults;
-  file.OmitWhenDefault({"correction-weight"}, every_key_file(&defaults).values());
+  file.OmitWhenDefault({"correction-weight", "disc-view"}, every_key_file(&defaults).values());
   return file;
 }
 
@@ -99,6 +99,9 @@ void GanSettings::Register(OptionsItf* opts) {
                   "Generator hidden activation (the paper: relu; leaky_relu has slope 0.2)");
   opts->RegisterEnum("disc-augment", &disc_augment, kGanDiscAugmentNames,
                   "Discriminator input augmentation (the paper: none; DiffAugment-style random delay, gain, polarity)");
+  opts->RegisterEnum("disc-view", &disc_view, kGanDiscViewNames,
+                  "What the discriminators read (the paper: waveform); waveform+envelope adds a critic of each band's "
+                  "level in dB per 8 ms frame, where an RIR's quiet late part (each band's decay) weighs as its start");
   opts->RegisterEnum("generator-update", &generator_update, kGanGeneratorUpdateNames,
                   "sequential (the paper: G_SR then G_RS, each on fresh batches) or joint (CycleGAN's "
                   "reference: both generators from one forward, one summed loss)");
@@ -179,7 +182,8 @@ namespace {
 std::string architecture_text(const GanSettings& s) {
   return "width " + std::to_string(s.width) + " (decoder " + choice_name(kGanDecoderNames, s.decoder) + ", generator " +
          choice_name(kGanGeneratorNames, s.generator) + ", correction max " + format_double(s.correction_max_hz, 6) +
-         " Hz, activation " + choice_name(kGanActivationNames, s.generator_activation) + ", kernel " +
+         " Hz, activation " + choice_name(kGanActivationNames, s.generator_activation) +
+         ", discriminators' view " + choice_name(kGanDiscViewNames, s.disc_view) + ", kernel " +
          std::to_string(s.kernel_length) + ")";
 }
 }  // namespace
@@ -190,7 +194,7 @@ void check_same_architecture(const GanSettings& expected, const GanSettings& fou
       expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz ||
       expected.decoder != found.decoder || expected.generator != found.generator ||
       expected.correction_max_hz != found.correction_max_hz ||
-      expected.generator_activation != found.generator_activation) {
+      expected.generator_activation != found.generator_activation || expected.disc_view != found.disc_view) {
     throw Error(what + ": model " + architecture_text(found) + ", expected " + architecture_text(expected));
   }
 }

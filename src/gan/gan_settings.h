@@ -19,6 +19,7 @@ enum class GanGenerator { kOriginal, kResidual, kBandGain };
 enum class GanActivation { kRelu, kLeakyRelu };
 enum class GanGeneratorUpdate { kSequential, kJoint };
 enum class GanDiscAugment { kNone, kShiftGainPolarity };
+enum class GanDiscView { kWaveform, kWaveformEnvelope };
 enum class GanPrecision { kFloat32, kBfloat16 };
 
 inline const Choices<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
@@ -31,6 +32,8 @@ inline const Choices<GanGeneratorUpdate> kGanGeneratorUpdateNames = {
     {"joint", GanGeneratorUpdate::kJoint}, {"sequential", GanGeneratorUpdate::kSequential}};
 inline const Choices<GanDiscAugment> kGanDiscAugmentNames = {
     {"none", GanDiscAugment::kNone}, {"shift-gain-polarity", GanDiscAugment::kShiftGainPolarity}};
+inline const Choices<GanDiscView> kGanDiscViewNames = {
+    {"waveform", GanDiscView::kWaveform}, {"waveform+envelope", GanDiscView::kWaveformEnvelope}};
 inline const Choices<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
                                                          {"bfloat16", GanPrecision::kBfloat16}};
 
@@ -100,6 +103,12 @@ struct GanSettings {
   // dozen training RIRs, after which its gradient no longer tells a generator where the real domain
   // lies. Files without the key: none.
   GanDiscAugment disc_augment = GanDiscAugment::kNone;
+  // What the discriminators read: waveform (the original) or waveform+envelope: also each band's
+  // level in dB per 8 ms frame (gan_band_envelope.h), where the quiet late part of an RIR, and with
+  // it each band's decay and early energy, weighs as much as its loud start; the two critics'
+  // logits are summed. Part of the architecture (the discriminators' weights). Files without the
+  // key: waveform.
+  GanDiscView disc_view = GanDiscView::kWaveform;
   // Linear learning-rate warm-up over the first N steps (0: none, the original).
   long long warmup_steps = 0;
   GanPrecision precision = GanPrecision::kFloat32;  // training arithmetic (bfloat16: CPU autocast)

@@ -107,6 +107,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
   GanSettings s = default_training_settings();
   s.Register(&recorder);
   s.correction_weight = 0.5;  // written only away from its default (added after files were written)
+  s.disc_view = GanDiscView::kWaveformEnvelope;  // likewise
   const SettingsValues values = gan_settings_values(s);
   ASSERT_GE(recorder.names.size(), 19u);
   for (std::string name : recorder.names) {
@@ -124,6 +125,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.generator_activation = kGanActivationNames[k % 2].second;
     s.generator_update = kGanGeneratorUpdateNames[k % 2].second;
     s.disc_augment = kGanDiscAugmentNames[k % 2].second, s.precision = kGanPrecisionNames[k % 2].second;
+    s.disc_view = kGanDiscViewNames[k % 2].second;
     s.real_list = "a b/real.scp", s.synthetic_list = "";
     const std::string text = gan_settings_text(s);
     const GanSettings back = parse_gan_settings(text, "written");
@@ -134,6 +136,8 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_EQ(back.correction_weight, 0.125);
     EXPECT_EQ(back.generator, s.generator);
     EXPECT_EQ(back.precision, s.precision);
+    EXPECT_EQ(back.disc_view, s.disc_view);
+    EXPECT_EQ(text.find("disc_view") != std::string::npos, s.disc_view != GanDiscView::kWaveform);
     EXPECT_EQ(back.real_list, "a b/real.scp");
     EXPECT_EQ(back.synthetic_list, "");
   }

@@ -1,0 +1,61 @@
+#include "gan/gan_band_envelope.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <torch/fft.h>
+
+#include "gan/gan_band_gain.h"
+#include "gan/gan_networks.h"
+
+namespace tsrir {
+namespace gan {
+namespace {
+
+constexpr int kEnvelopeLayers = 3;
+constexpr int kEnvelopeKernel = 5;
+
+int64_t frame_count(int64_t n) { return (n - kEnvelopeFrameLength) / kEnvelopeHop + 1; }
+
+}  // namespace
+
+torch::Tensor band_log_envelope(const torch::Tensor& x) {
+  const torch::Tensor signal = x.to(torch::kFloat).squeeze(1);  // [batch, n]
+  const torch::Tensor window =
+      torch::hann_window(kEnvelopeFrameLength, torch::TensorOptions().dtype(torch::kFloat).device(x.device()));
+  const torch::Tensor frames = signal.unfold(-1, kEnvelopeFrameLength, kEnvelopeHop) * window;  // [batch, F, L]
+  const torch::Tensor power = torch::view_as_real(torch::fft::rfft(frames, kEnvelopeFrameLength, -1)).pow(2).sum(-1);  // [batch, F, bins]
+  // (|X|^2 as re^2 + im^2: the complex abs has no gradient at 0)
+  static const torch::Tensor responses = band_gain_response_tensor(kEnvelopeFrameLength);  // R_b(k)
+  const torch::Tensor energy = torch::matmul(responses.to(x.device()), power.transpose(1, 2));  // [batch, bands, F]
+  // Relative to the RIR's loudest cell, floored 80 dB below it: the same map at any gain.
+  const torch::Tensor peak = std::get<0>(energy.flatten(1).max(1)).clamp_min(1e-30).view({-1, 1, 1});
+  const double floor = std::pow(10.0, kEnvelopeFloorDb / 10.0);
+  return torch::log10(energy / peak + floor) * 0.5;  // 10 log10(.) / 20 dB
+}
+
+EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init) {
+  int64_t in = kBandGainBands, frames = frame_count(slice_length);
+  for (int i = 0; i < kEnvelopeLayers; ++i) {
+    const int64_t out = int64_t(width) << (i + 1);
+    // Stride 2, padding k/2: ceil(F / 2) frames out, 'same' as the waveform critic's layers.
+    auto conv = torch::nn::Conv1d(
+        torch::nn::Conv1dOptions(in, out, kEnvelopeKernel).stride(2).padding(kEnvelopeKernel / 2));
+    init_layer(conv->weight, conv->bias, init, double(in) * kEnvelopeKernel);
+    down_.push_back(register_module("envelope_conv_" + std::to_string(i), conv));
+    in = out;
+    frames = (frames + 1) / 2;
+  }
+  output_ = register_module("envelope_output", torch::nn::Linear(in * frames, 1));
+  init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
+}
+
+torch::Tensor EnvelopeCriticImpl::forward(const torch::Tensor& x) {
+  torch::Tensor h = band_log_envelope(x).to(x.scalar_type());
+  for (auto& layer : down_) h = torch::leaky_relu(layer->forward(h), 0.2);
+  return output_->forward(h.flatten(1)).squeeze(1);
+}
+
+}  // namespace gan
+}  // namespace tsrir

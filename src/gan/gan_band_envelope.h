@@ -1,0 +1,51 @@
+// The discriminators' second view of an RIR (--disc-view=waveform+envelope; LibTorch, private to
+// src/gan and its unit tests).
+//
+// Why: the paper's discriminators read the peak-normalised waveform, on which everything after the
+// first few tens of ms is a few thousandths of full scale; what separates simulated from measured
+// rooms above a few hundred Hz is mostly there (how fast each band decays, whether that rate
+// changes, how much energy arrives early), and a waveform critic's gradient barely reaches it. In
+// the fidelity suite (issue 34) the band-gain generator, whose gains can make exactly these
+// changes, moved a faster high-band decay the wrong way and drifted the low band's level it was
+// meant to keep: nothing told it where those levels lay. This view gives the critic the levels
+// themselves, in dB, where a late band 50 dB down weighs as much as the direct sound:
+//
+//   E_b(f) = sum_k R_b(k) |STFT_f(x)(k)|^2,  L_b(f) = 10 log10(E_b(f) + 1e-8 max E) - 10 log10(max E)
+//
+// over 32 ms Hann frames every 8 ms (125 frames of a 16384-sample slice), with R_b the band-gain
+// generator's own band split (gan_band_gain.h: 6 bands, raised-cosine crossfades at 250 Hz-4 kHz,
+// summing to 1 at every frequency, so E partitions each frame's energy), max E the largest cell of
+// the RIR (an RIR's level says nothing: the map is the same at any gain) and the floor 80 dB below
+// it. A small stack of strided convolutions over the frames (the bands as channels) reads it to one
+// logit, which the discriminator adds to its waveform logit (a departure; the paper has none).
+#pragma once
+#include <torch/torch.h>
+
+#include <cstdint>
+
+#include "gan/gan_settings.h"
+
+namespace tsrir {
+namespace gan {
+
+constexpr int64_t kEnvelopeFrameLength = 512;  // 32 ms at 16 kHz
+constexpr int64_t kEnvelopeHop = 128;          // 8 ms
+constexpr double kEnvelopeFloorDb = -80.0;
+
+// The band levels L [batch, bands, frames] in units of 20 dB (0 at the RIR's loudest cell, -4 at
+// the floor) of x [batch, 1, n] (n >= one frame); differentiable, float32.
+torch::Tensor band_log_envelope(const torch::Tensor& x);
+
+class EnvelopeCriticImpl : public torch::nn::Module {
+ public:
+  EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init);
+  torch::Tensor forward(const torch::Tensor& x);  // x [batch, 1, slice] -> logit [batch]
+
+ private:
+  std::vector<torch::nn::Conv1d> down_;
+  torch::nn::Linear output_{nullptr};
+};
+TORCH_MODULE(EnvelopeCritic);
+
+}  // namespace gan
+}  // namespace tsrir
