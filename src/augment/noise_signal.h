@@ -24,7 +24,12 @@ namespace tsrir {
 // `noise_is_int16`: its samples are 16-bit PCM values, which the pipe's rounding to 16 bits leaves
 // as they are when there is no RIR (the rounding is then skipped). `kaldi_compat`: as Kaldi's own
 // nested program computes it (ReverbOptions::kaldi_compat), truncated to 16 bits.
-std::vector<float> nested_noise_signal(std::vector<float> noise, double sample_rate_hz, const PreparedRir* rir,
+// `noise` is only read (with an RIR not copied at all, without one only the samples the result
+// keeps); given as an rvalue, its buffer becomes the result when there is no RIR and it is kept or
+// cut. The same values either way.
+std::vector<float> nested_noise_signal(const std::vector<float>& noise, double sample_rate_hz, const PreparedRir* rir,
+                                       double duration_s, bool noise_is_int16 = false, bool kaldi_compat = false);
+std::vector<float> nested_noise_signal(std::vector<float>&& noise, double sample_rate_hz, const PreparedRir* rir,
                                        double duration_s, bool noise_is_int16 = false, bool kaldi_compat = false);
 
 AdditiveSignal planned_noise_signal(const PlannedNoise& planned, std::shared_ptr<const std::vector<float>> noise,

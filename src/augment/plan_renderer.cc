@@ -6,6 +6,12 @@
 #include "util/error.h"
 
 namespace tsrir {
+namespace {
+
+// A noise as errors and warnings name it.
+std::string noise_where(const NoiseChoice& choice) { return choice.where + " (noise '" + choice.id + "')"; }
+
+}  // namespace
 
 template <typename T>
 template <typename Load>
@@ -83,30 +89,43 @@ std::vector<std::vector<float>> PlanRenderer::render_channels(const std::vector<
   return out;
 }
 
-std::shared_ptr<const std::vector<float>> PlanRenderer::noise_channel(long index, double rate, int channel) {
+std::shared_ptr<const PlanRenderer::NoiseChannels> PlanRenderer::noise_channels(long index, double rate) {
   const NoiseChoice& choice = sources_.noises[static_cast<size_t>(index)];
-  const std::string what = choice.where + " (noise '" + choice.id + "')";
-  const std::shared_ptr<const std::vector<std::vector<float>>> channels =
-      noise_channels_.get({index, rate}, [&] { return read_channels_at_rate(choice.rxfilename, rate, what); });
-  if (static_cast<size_t>(channel) >= channels->size())
-    throw Error(what + ": has " + std::to_string(channels->size()) + " channel(s), but microphone " +
-                std::to_string(channel) + " of the array needs its own: a noise added without an RIR needs one " +
-                "channel per channel of the speech's RIR (as wav-reverberate --multi-channel-output)");
-  return std::shared_ptr<const std::vector<float>>(channels, &(*channels)[static_cast<size_t>(channel)]);
+  return noises_.get({index, rate},
+                     [&] { return read_channels_at_rate(choice.rxfilename, rate, noise_where(choice)); });
+}
+
+std::shared_ptr<const std::vector<float>> PlanRenderer::mono_noise(long index, double rate) {
+  const std::shared_ptr<const NoiseChannels> noise = noise_channels(index, rate);
+  const NoiseChoice& choice = sources_.noises[static_cast<size_t>(index)];
+  if (noise->channels.empty()) throw Error(noise_where(choice) + ": no audio channels");
+  std::call_once(noise->mono_warning,
+                 [&] { warn_channel_used(static_cast<int>(noise->channels.size()), 0, noise_where(choice), ""); });
+  return std::shared_ptr<const std::vector<float>>(noise, &noise->channels[0]);
+}
+
+std::shared_ptr<const std::vector<float>> PlanRenderer::noise_channel(long index, double rate, int channel) {
+  const std::shared_ptr<const NoiseChannels> noise = noise_channels(index, rate);
+  const std::vector<std::vector<float>>& channels = noise->channels;
+  if (static_cast<size_t>(channel) >= channels.size())
+    throw Error(noise_where(sources_.noises[static_cast<size_t>(index)]) + ": has " +
+                std::to_string(channels.size()) + " channel(s), but microphone " + std::to_string(channel) +
+                " of the array needs its own: a noise added without an RIR needs one channel per channel of " +
+                "the speech's RIR (as wav-reverberate --multi-channel-output)");
+  return std::shared_ptr<const std::vector<float>>(noise, &channels[static_cast<size_t>(channel)]);
 }
 
 std::vector<AdditiveSignal> PlanRenderer::additive_signals(const RecordingPlan& plan, double rate, int channel) {
   std::vector<AdditiveSignal> additive;
   for (const PlannedNoise& planned : plan.noises) {
     const NoiseChoice& choice = sources_.noises[static_cast<size_t>(planned.noise)];
-    const std::string what = choice.where + " (noise '" + choice.id + "')";
     std::shared_ptr<const std::vector<float>> noise;
     std::shared_ptr<const PreparedRir> noise_rir;
     if (channel < 0 || planned.rir >= 0) {
-      noise = noises_.get({planned.noise, rate},
-                          [&] { return first_channel_of(read_channels_at_rate(choice.rxfilename, rate, what), what); });
+      noise = mono_noise(planned.noise, rate);
       noise_rir = channel < 0 ? rir(planned.rir, rate)
-                              : rir_channel(planned.rir, rate, channel, " for the point-source noise " + what);
+                              : rir_channel(planned.rir, rate, channel,
+                                            " for the point-source noise " + noise_where(choice));
     } else {
       noise = noise_channel(planned.noise, rate, channel);
     }

@@ -1,8 +1,9 @@
 // A recording's plan (augment_plan.h) made into audio, as reverberate-data --write-wavs writes it
 // and as the Python Augmenter gives it for one utterance: the plan's RIR and noises read at the
-// speech's sample rate (each (item, rate) loaded once, by whichever thread needs it first; channel
-// 0 of a multichannel file, with rate_policy.h's warning), each noise made as the pipe's nested
-// step would make it, then reverberate_channel(). Thread-safe.
+// speech's sample rate (each (item, rate) loaded once, by whichever thread needs it first, a noise
+// once for its mono and its per-microphone forms; channel 0 of a multichannel file in the mono
+// form, with rate_policy.h's warning), each noise made as the pipe's nested step would make it,
+// then reverberate_channel(). Thread-safe.
 #pragma once
 #include <map>
 #include <memory>
@@ -67,8 +68,18 @@ class PlanRenderer {
   ReverbOptions reverb_;
   LoadOnce<PreparedRir> rirs_;
   LoadOnce<RirChannels> rir_channels_;
-  LoadOnce<std::vector<float>> noises_;
-  LoadOnce<std::vector<std::vector<float>>> noise_channels_;
+  // Every channel of a noise at one rate, read (and resampled) once for both forms: the mono form
+  // is channel 0, an array microphone's is its own channel. The multichannel warning is given once,
+  // when the mono form is first taken (a mono-only run keeps the other channels too).
+  struct NoiseChannels {
+    explicit NoiseChannels(std::vector<std::vector<float>>&& c) : channels(std::move(c)) {}
+    std::vector<std::vector<float>> channels;
+    mutable std::once_flag mono_warning;
+  };
+  LoadOnce<NoiseChannels> noises_;
+  std::shared_ptr<const NoiseChannels> noise_channels(long index, double rate);
+  // Channel 0 of noise `index` at `rate` (the mono form, with rate_policy.h's warning).
+  std::shared_ptr<const std::vector<float>> mono_noise(long index, double rate);
   // Channel `channel` of noise `index` / of RIR `index` at `rate`, or an error naming the file,
   // its channel count and (`user`) what needed the channel.
   std::shared_ptr<const std::vector<float>> noise_channel(long index, double rate, int channel);

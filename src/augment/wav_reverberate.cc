@@ -280,11 +280,16 @@ std::vector<std::vector<float>> nested_additive_signal(const WavReverberateOptio
   std::vector<std::vector<float>> out(channels);
   for (size_t k = 0; k < channels; ++k) {
     if (!used[k]) continue;
-    std::unique_ptr<PreparedRir> prepared;
-    if (!rir.empty()) prepared = std::make_unique<PreparedRir>(std::move(rir[k]), info.sample_rate_hz);
-    std::vector<float> source = rir.empty() ? std::move(noise[k]) : noise.at(0);
-    out[k] = nested_noise_signal(std::move(source), info.sample_rate_hz, prepared.get(), duration_s,
-                                 info.int16_samples, config.reverb.kaldi_compat);
+    if (rir.empty()) {
+      out[k] = nested_noise_signal(std::move(noise[k]), info.sample_rate_hz, nullptr, duration_s, info.int16_samples,
+                                   config.reverb.kaldi_compat);
+    } else {
+      // Each microphone hears channel 0 (the source's signal) through its own RIR channel: channel
+      // 0 is lent to each, not copied per microphone.
+      const PreparedRir prepared(std::move(rir[k]), info.sample_rate_hz);
+      out[k] = nested_noise_signal(noise.at(0), info.sample_rate_hz, &prepared, duration_s, info.int16_samples,
+                                   config.reverb.kaldi_compat);
+    }
     if (info.sample_rate_hz != fs) out[k] = resample(out[k], info.sample_rate_hz, fs);
   }
   return out;

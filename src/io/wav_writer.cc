@@ -1,13 +1,16 @@
 #include "io/wav_writer.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 
 #include "io/atomic_output.h"
+#include "io/owned_output.h"
 #include "util/error.h"
 
 namespace tsrir {
@@ -200,6 +203,14 @@ void write_wav_channels(const std::string& path, const std::vector<std::vector<f
     std::cout.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     std::cout.flush();
     if (!std::cout) throw Error("error writing audio to standard output");
+    return;
+  }
+  if (options.file_mode == WavFileMode::kDirect) {
+    run_inputs()->check_output_file(path);
+    std::ofstream file(path, std::ios::out | std::ios::trunc | std::ios::binary);
+    file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    file.close();
+    if (!file) throw Error("cannot write " + path + ": " + std::strerror(errno));
     return;
   }
   AtomicTextFile out(path);

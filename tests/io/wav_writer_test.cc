@@ -5,15 +5,18 @@
 
 #include <gtest/gtest.h>
 #include <sndfile.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <random>
 
 #include "io/audio_io.h"
+#include "util/error.h"
 #include "test_support.h"
 
 using tsrir_test::TempDirTest;
@@ -117,6 +120,43 @@ TEST_F(WavWriter, EncodeIsHeaderPlusAppendedFramesForAnyChannelCount) {
       append_wav_frames(inter.data() + 5000 * channels, frames - 5000, channels, format, 5000, &pieces, &clipped);
       EXPECT_EQ(whole, pieces) << channels << " channel(s)";
     }
+  }
+}
+
+// The two file modes write the same bytes (encode_wav's); kAtomic replaces the file by a rename (a
+// new inode), kDirect writes into the path itself (the same inode, no temporary name beside it),
+// and a kDirect write that cannot open its path names it.
+TEST_F(WavWriter, DirectModeWritesInPlaceAtomicModeRenames) {
+  const auto ch = tones(2, 1234);
+  AudioWriteOptions o;
+  o.format = SampleFormat::kFloat32;
+  const std::vector<char> expected = encode_wav(ch, 16000, o);
+  const std::string wav = path("m.wav");
+  write_text("m.wav", "an older file");
+  struct stat before {}, after {};
+  ASSERT_EQ(::stat(wav.c_str(), &before), 0);
+  o.file_mode = WavFileMode::kDirect;
+  write_wav_channels(wav, ch, 16000, o);
+  ASSERT_EQ(::stat(wav.c_str(), &after), 0);
+  EXPECT_EQ(after.st_ino, before.st_ino);
+  EXPECT_EQ(read_text("m.wav"), std::string(expected.begin(), expected.end()));
+  size_t entries = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir_)) entries += e.path().filename() == "m.wav" ? 0 : 1;
+  EXPECT_EQ(entries, 0u) << "a direct write left another file beside it";
+
+  o.file_mode = WavFileMode::kAtomic;
+  write_wav_channels(wav, ch, 16000, o);
+  ASSERT_EQ(::stat(wav.c_str(), &before), 0);
+  EXPECT_NE(before.st_ino, after.st_ino);
+  EXPECT_EQ(read_text("m.wav"), std::string(expected.begin(), expected.end()));
+
+  o.file_mode = WavFileMode::kDirect;
+  const std::string missing = path("no-such-dir/x.wav");
+  try {
+    write_wav_channels(missing, ch, 16000, o);
+    FAIL() << "a direct write into a missing directory succeeded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write " + missing), std::string::npos) << e.what();
   }
 }
 
