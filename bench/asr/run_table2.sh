@@ -113,8 +113,14 @@ translator_options() {  # <name>: the options beside width, batch and steps
   esac
 }
 translator_sig() {  # <name>: what the model is made from; a change trains it anew
-  # The program's --help lists its defaults: a new default translator is trained anew.
-  echo "$(translator_options "$1") steps=$gan_steps $(ts-rirgan-train --help 2>&1 | md5sum) $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
+  # The settings a model trained now would store (--print-settings: every option's value, new
+  # defaults included), not --help's text, so that a reworded help does not retrain it.
+  local settings
+  # shellcheck disable=SC2046
+  settings=$(ts-rirgan-train $(translator_options "$1") --width=16 --batch-size=4 --seed=0 \
+    --real="$demo_rirs/real_train/rir_list" --synthetic="$demo_rirs/gas_train/rir_list" --print-settings "$out/gan/$1" | md5sum) ||
+    die "ts-rirgan-train --print-settings failed"
+  echo "steps=$gan_steps settings=$settings $(md5sum <"$demo_rirs/real_train/rir_list") $(md5sum <"$demo_rirs/gas_train/rir_list")"
 }
 train_translator() {  # <name>
   local name=$1 dir=$out/gan/$1 sig extra
