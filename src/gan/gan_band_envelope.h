@@ -13,7 +13,7 @@
 //   E_b(f) = sum_k R_b(k) |STFT_f(x)(k)|^2,  L_b(f) = 10 log10(E_b(f) + 1e-8 max E) - 10 log10(max E)
 //
 // over 32 ms Hann frames every 8 ms (125 frames of a 16384-sample slice), with R_b the band-gain
-// generator's own band split (gan_band_gain.h: 6 bands, raised-cosine crossfades at 250 Hz-4 kHz,
+// generator's own band split (gan_band_gain.h: 11 bands, raised-cosine crossfades at 250 Hz-5.7 kHz,
 // summing to 1 at every frequency, so E partitions each frame's energy), max E the largest cell of
 // the RIR (an RIR's level says nothing: the map is the same at any gain) and the floor 80 dB below
 // it. A small stack of strided convolutions over the frames (the bands as channels) reads it to one

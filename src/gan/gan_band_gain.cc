@@ -18,10 +18,11 @@ constexpr int64_t kGuardSamples = 2048;
 constexpr int64_t kSliceLength = 16384;
 constexpr double kHeadScale = 0.5;
 
-// 0 below edge/sqrt(2), 1 above edge*sqrt(2), a raised cosine in log2(f) between.
+// 0 below edge * 2^(-w/2), 1 above edge * 2^(w/2), a raised cosine in log2(f) between
+// (w = kCrossfadeOctaves).
 double crossfade(double hz, double edge_hz) {
   if (hz <= 0) return 0.0;
-  const double u = std::log2(hz / edge_hz) + 0.5;
+  const double u = std::log2(hz / edge_hz) / kCrossfadeOctaves + 0.5;
   if (u <= 0) return 0.0;
   if (u >= 1) return 1.0;
   return 0.5 - 0.5 * std::cos(M_PI * u);

@@ -11,9 +11,12 @@
 //   change(t) = mask(t) * sum_b (g_b(t) - 1) * x_b(t),    g_b(t) = exp(interp_k(v_bk; t - onset))
 //
 // - x_b: the input split into kBands zero-phase bands whose responses sum to one at every
-//   frequency (raised-cosine crossfades one octave wide on a log-frequency axis, centred at
-//   kBandEdgesHz), so equal gains give the input back exactly and the overall spectral gain is a
-//   smooth interpolation of the band gains (a short filter: the fine structure survives).
+//   frequency (raised-cosine crossfades half an octave wide on a log-frequency axis, centred at
+//   kBandEdgesHz, half an octave apart), so equal gains give the input back exactly and the
+//   overall spectral gain is a smooth interpolation of the band gains (a short filter: the fine
+//   structure survives). Half-octave bands: with octave bands and octave-wide crossfades, a change
+//   above 2-3 kHz (a loudspeaker's or an absorber's) also moved 700-1400 Hz, which the band above
+//   1 kHz reaches (the fidelity suite's decay kind, bench/RESULTS.md).
 // - v_bk: log gains (nepers, bounded to +-kMaxGainDb by a tanh) at kKnotMs after the input's onset
 //   (its first sample within 20 dB of its peak), linear in time between knots and held beyond
 //   the last. The first two knots share one value, the direct-sound gain (a flat window from
@@ -38,8 +41,10 @@
 namespace tsrir {
 namespace gan {
 
-constexpr int kBandGainBands = 6;
-constexpr double kBandEdgesHz[kBandGainBands - 1] = {250.0, 500.0, 1000.0, 2000.0, 4000.0};
+constexpr int kBandGainBands = 11;
+constexpr double kBandEdgesHz[kBandGainBands - 1] = {250.0,  353.553, 500.0,  707.107,  1000.0,
+                                                     1414.21, 2000.0,  2828.43, 4000.0, 5656.85};
+constexpr double kCrossfadeOctaves = 0.5;
 constexpr int kBandGainKnots = 11;
 constexpr double kKnotMs[kBandGainKnots] = {-1.0, 1.0, 3.0, 6.0, 12.0, 24.0, 48.0, 96.0, 192.0, 384.0, 768.0};
 constexpr double kMaxGainDb = 24.0;

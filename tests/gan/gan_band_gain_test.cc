@@ -47,7 +47,7 @@ void set_head(BandGain& stage, const std::vector<std::vector<double>>& raw) {
 double band_centre_hz(int b) {
   if (b == 0) return 100.0;
   if (b == kBandGainBands - 1) return 7000.0;
-  return kBandEdgesHz[b - 1] * std::sqrt(2.0);
+  return std::sqrt(kBandEdgesHz[b - 1] * kBandEdgesHz[b]);
 }
 
 }  // namespace
