@@ -13,7 +13,7 @@ namespace {
 
 constexpr double kRateHz = 16000.0;
 // Zeros after the 16384 samples before the FFT: the band filters' responses (a few ms, the
-// 250 Hz crossfade's ~20 ms) must not wrap around onto the RIR's start.
+// 250 Hz half-octave crossfade's ~40 ms) must not wrap around onto the RIR's start.
 constexpr int64_t kGuardSamples = 2048;
 constexpr int64_t kSliceLength = 16384;
 constexpr double kHeadScale = 0.5;
