@@ -20,15 +20,16 @@ int64_t frame_count(int64_t n) { return (n - kEnvelopeFrameLength) / kEnvelopeHo
 
 }  // namespace
 
-torch::Tensor band_log_envelope(const torch::Tensor& x) {
+torch::Tensor envelope_window() { return torch::hann_window(kEnvelopeFrameLength, torch::kFloat); }
+
+torch::Tensor envelope_band_responses() { return band_gain_response_tensor(kEnvelopeFrameLength); }
+
+torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& window, const torch::Tensor& responses) {
   const torch::Tensor signal = x.to(torch::kFloat).squeeze(1);  // [batch, n]
-  const torch::Tensor window =
-      torch::hann_window(kEnvelopeFrameLength, torch::TensorOptions().dtype(torch::kFloat).device(x.device()));
   const torch::Tensor frames = signal.unfold(-1, kEnvelopeFrameLength, kEnvelopeHop) * window;  // [batch, F, L]
   const torch::Tensor power = torch::view_as_real(torch::fft::rfft(frames, kEnvelopeFrameLength, -1)).pow(2).sum(-1);  // [batch, F, bins]
   // (|X|^2 as re^2 + im^2: the complex abs has no gradient at 0)
-  static const torch::Tensor responses = band_gain_response_tensor(kEnvelopeFrameLength);  // R_b(k)
-  const torch::Tensor energy = torch::matmul(responses.to(x.device()), power.transpose(1, 2));  // [batch, bands, F]
+  const torch::Tensor energy = torch::matmul(responses, power.transpose(1, 2));  // [batch, bands, F]
   // Relative to the RIR's loudest cell, floored 80 dB below it: the same map at any gain.
   const torch::Tensor peak = std::get<0>(energy.flatten(1).max(1)).clamp_min(1e-30).view({-1, 1, 1});
   const double floor = std::pow(10.0, kEnvelopeFloorDb / 10.0);
@@ -49,10 +50,12 @@ EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit 
   }
   output_ = register_module("envelope_output", torch::nn::Linear(in * frames, 1));
   init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
+  window_ = register_buffer("envelope_window", envelope_window());
+  responses_ = register_buffer("envelope_band_responses", envelope_band_responses());
 }
 
 torch::Tensor EnvelopeCriticImpl::forward(const torch::Tensor& x) {
-  torch::Tensor h = band_log_envelope(x).to(x.scalar_type());
+  torch::Tensor h = band_log_envelope(x, window_, responses_).to(x.scalar_type());
   for (auto& layer : down_) h = torch::leaky_relu(layer->forward(h), 0.2);
   return output_->forward(h.flatten(1)).squeeze(1);
 }

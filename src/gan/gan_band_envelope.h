@@ -32,9 +32,15 @@ constexpr int64_t kEnvelopeFrameLength = 512;  // 32 ms at 16 kHz
 constexpr int64_t kEnvelopeHop = 128;          // 8 ms
 constexpr double kEnvelopeFloorDb = -80.0;
 
+// The frames' Hann window [kEnvelopeFrameLength] and the band responses R_b on their FFT bins
+// [bands, bins]: constants, which the critic keeps as buffers (on its device, made once).
+torch::Tensor envelope_window();
+torch::Tensor envelope_band_responses();
+
 // The band levels L [batch, bands, frames] in units of 20 dB (0 at the RIR's loudest cell, -4 at
-// the floor) of x [batch, 1, n] (n >= one frame); differentiable, float32.
-torch::Tensor band_log_envelope(const torch::Tensor& x);
+// the floor) of x [batch, 1, n] (n >= one frame), with `window` and `responses` above on x's
+// device; differentiable, float32.
+torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& window, const torch::Tensor& responses);
 
 class EnvelopeCriticImpl : public torch::nn::Module {
  public:
@@ -44,6 +50,7 @@ class EnvelopeCriticImpl : public torch::nn::Module {
  private:
   std::vector<torch::nn::Conv1d> down_;
   torch::nn::Linear output_{nullptr};
+  torch::Tensor window_, responses_;  // buffers (not in checkpoints, which hold parameters only)
 };
 TORCH_MODULE(EnvelopeCritic);
 
