@@ -20,7 +20,7 @@ namespace {
 const std::vector<std::string> kFileOrder = {
     "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
     "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
-    "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
+    "identity_gain_weight", "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
     "generator_update", "disc_augment", "disc_view", "precision", "warmup_steps", "real_list", "synthetic_list"};
 
 SettingsStyle file_style() {
@@ -45,7 +45,7 @@ SettingsFile every_key_file(GanSettings* settings) {
 SettingsFile bound_file(GanSettings* settings) {
   SettingsFile file = every_key_file(settings);
   GanSettings defaults;
-  file.OmitWhenDefault({"correction-weight", "disc-view"}, every_key_file(&defaults).values());
+  file.OmitWhenDefault({"correction-weight", "disc-view", "identity-gain-weight"}, every_key_file(&defaults).values());
   return file;
 }
 
@@ -80,6 +80,9 @@ void GanSettings::Register(OptionsItf* opts) {
   opts->Register("gain-weight", &gain_weight,
                  "Band-gain generators: weight of the L2 penalty on their log gains (nepers^2) in the generators' loss "
                  "(the paper has no such term)");
+  opts->Register("identity-gain-weight", &identity_gain_weight,
+                 "Band-gain generators: weight of the L2 penalty on the log gains (nepers^2) they predict for RIRs of "
+                 "their own domain, which should pass unchanged (a gain identity; 0 = none; the paper has no such term)");
   opts->Register("correction-weight", &correction_weight,
                  "Residual and band-gain generators: weight of the L2 penalty on the waveform correction (its mean square "
                  "re the input's) in the generators' loss (0 = none; the paper has no such term)");
@@ -134,6 +137,7 @@ void check_gan_settings(const GanSettings& s, const std::string& file) {
   require(non_negative(s.cycle_weight), "cycle-weight", ">= 0");
   require(non_negative(s.identity_weight), "identity-weight", ">= 0");
   require(non_negative(s.gain_weight), "gain-weight", ">= 0");
+  require(non_negative(s.identity_gain_weight), "identity-gain-weight", ">= 0");
   require(non_negative(s.correction_weight), "correction-weight", ">= 0");
   require(s.warmup_steps >= 0, "warmup-steps", ">= 0");
   require(s.correction_max_hz >= 0 && s.correction_max_hz < 8000, "correction-max-hz", "in (0, 8000) or 0");

@@ -263,7 +263,8 @@ class Trainer {
       // One batched pass of g over [source; f(target); target].
       const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
       // The translation pass's gains are the first b rows of the batched pass's.
-      const torch::Tensor gains = translation_penalty(g, b, real_side ? &L->gain_rms_db : nullptr);
+      const torch::Tensor gains = translation_penalty(g, b, real_side ? &L->gain_rms_db : nullptr) +
+                                  identity_gain_penalty(g, 2 * b, b);
       const torch::Tensor translated = out.narrow(0, 0, b);
       const torch::Tensor out_float = out.to(torch::kFloat);
       const torch::Tensor target_cycled = out_float.narrow(0, b, b);
@@ -299,12 +300,13 @@ class Trainer {
     auto [r, s] = batches(draw);
     const int64_t b = r.size(0);
     torch::Tensor fake_r, fake_s;
-    const bool identity = m_.settings.identity_weight > 0;
+    // The identity halves also when only the gain identity asks for them (their L1 then has weight 0).
+    const bool identity = m_.settings.identity_weight > 0 || m_.settings.identity_gain_weight > 0;
     {
       torch::Tensor adv_r, adv_s, cyc_r, cyc_s, idt_r, idt_s, loss;
       {
         AutocastScope autocast(bfloat16_);
-        // With identity weight 0 (the default) the identity half of each pass has no gradient
+        // With both identity weights 0 (the default) the identity half of each pass has no gradient
         // (0 x its L1), so it is not computed: 16 generator passes per step instead of 24. Each
         // RIR's output and gradient do not depend on the rest of its batch (no batch statistics;
         // GanNetworks.OutputAndGradientOfARirDoNotDependOnTheRestOfItsBatch), so this is the
@@ -313,9 +315,11 @@ class Trainer {
         // seeds were re-run with it, bench/RESULTS.md). The identity columns of the loss log
         // read "nan" (not measured).
         const torch::Tensor out_sr = m_.g_real->forward(identity ? torch::cat({s, r}, 0) : s);
-        const torch::Tensor gains_sr = translation_penalty(m_.g_real, b, &L->gain_rms_db);
+        const torch::Tensor gains_sr =
+            translation_penalty(m_.g_real, b, &L->gain_rms_db) + identity_gain_penalty(m_.g_real, b, b);
         const torch::Tensor out_rs = m_.g_synthetic->forward(identity ? torch::cat({r, s}, 0) : r);
-        const torch::Tensor gains_rs = translation_penalty(m_.g_synthetic, b, nullptr);
+        const torch::Tensor gains_rs =
+            translation_penalty(m_.g_synthetic, b, nullptr) + identity_gain_penalty(m_.g_synthetic, b, b);
         fake_r = out_sr.narrow(0, 0, b);
         fake_s = out_rs.narrow(0, 0, b);
         const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
@@ -377,6 +381,16 @@ class Trainer {
     }
     // None: a CPU zero, which adds to a loss on any device (a 0-dim tensor acts as a scalar).
     return penalty.defined() ? penalty : torch::zeros({}, torch::kFloat);
+  }
+
+  // --identity-gain-weight's penalty on the log gains of rows [first, first + rows) of a
+  // generator's last pass (its identity rows: RIRs of its own domain); zero where there is none.
+  torch::Tensor identity_gain_penalty(const gan::Generator& g, int64_t first, int64_t rows) const {
+    const torch::Tensor& v = g->last_log_gains();
+    if (!v.defined() || m_.settings.identity_gain_weight <= 0 || v.size(0) < first + rows) {
+      return torch::zeros({}, torch::kFloat);
+    }
+    return m_.settings.identity_gain_weight * v.narrow(0, first, rows).to(torch::kFloat).pow(2).mean();
   }
 
   // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
@@ -531,7 +545,7 @@ GanSettings settings_to_store(const GanTrainOptions& o) {
   if (settings.generator == GanGenerator::kOriginal) settings.correction_max_hz = 0.0;
   // Only band-gain generators have gains to penalise; 0 otherwise, as in the settings of models
   // made before the option, so that those resume under today's defaults.
-  if (settings.generator != GanGenerator::kBandGain) settings.gain_weight = 0.0;
+  if (settings.generator != GanGenerator::kBandGain) settings.gain_weight = settings.identity_gain_weight = 0.0;
   // The original generator has no correction to penalise.
   if (settings.generator == GanGenerator::kOriginal) settings.correction_weight = 0.0;
   settings.real_list = absolute_path(o.real_list);

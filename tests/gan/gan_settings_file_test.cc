@@ -108,6 +108,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
   s.Register(&recorder);
   s.correction_weight = 0.5;  // written only away from its default (added after files were written)
   s.disc_view = GanDiscView::kWaveformEnvelope;  // likewise
+  s.identity_gain_weight = 2;  // likewise
   const SettingsValues values = gan_settings_values(s);
   ASSERT_GE(recorder.names.size(), 19u);
   for (std::string name : recorder.names) {
@@ -119,7 +120,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.width = 3 + int(k), s.batch_size = 5, s.seed = 18446744073709551615ull, s.learning_rate = 1.0 / 3;
     s.disc_learning_rate = 2e-7, s.disc_updates = 4, s.cycle_weight = 0.1, s.identity_weight = 1e300;
     s.gain_weight = 0.25, s.rmsprop_initial_ms = 1, s.correction_max_hz = 7999.5, s.warmup_steps = 1LL << 40;
-    s.correction_weight = 0.125;
+    s.correction_weight = 0.125, s.identity_gain_weight = k % 2 ? 0.0 : 1.5;
     s.generator = kGanGeneratorNames[k].second;
     s.init = kGanInitNames[k % 2].second, s.decoder = kGanDecoderNames[k % 2].second;
     s.generator_activation = kGanActivationNames[k % 2].second;
@@ -138,6 +139,8 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_EQ(back.precision, s.precision);
     EXPECT_EQ(back.disc_view, s.disc_view);
     EXPECT_EQ(text.find("disc_view") != std::string::npos, s.disc_view != GanDiscView::kWaveform);
+    EXPECT_EQ(back.identity_gain_weight, s.identity_gain_weight);
+    EXPECT_EQ(text.find("identity_gain_weight") != std::string::npos, s.identity_gain_weight != 0.0);
     EXPECT_EQ(back.real_list, "a b/real.scp");
     EXPECT_EQ(back.synthetic_list, "");
   }
@@ -155,6 +158,7 @@ TEST(GanSettingsFile, ErrorsNameTheFileAndLine) {
   EXPECT_NE(error_of("format tsrir-ts-rirgan-settings-v2\n").find("m/settings.txt:1"), std::string::npos);
   EXPECT_NE(error_of(head + "correction_max_hz 8000\n").find("correction_max_hz"), std::string::npos);
   EXPECT_NE(error_of(head + "warmup_steps -1\n").find("warmup_steps"), std::string::npos);
+  EXPECT_NE(error_of(head + "identity_gain_weight -1\n").find("identity_gain_weight"), std::string::npos);
   EXPECT_NE(error_of(head + "slice_length 8192\n").find("unsupported"), std::string::npos);
   EXPECT_EQ(error_of(kFirstFormatFile), "");
 }
