@@ -47,6 +47,8 @@ constexpr double kBandEdgesHz[kBandGainBands - 1] = {250.0,  353.553, 500.0,  70
 constexpr double kCrossfadeOctaves = 0.5;
 constexpr int kBandGainKnots = 11;
 constexpr double kKnotMs[kBandGainKnots] = {-1.0, 1.0, 3.0, 6.0, 12.0, 24.0, 48.0, 96.0, 192.0, 384.0, 768.0};
+// The direct-sound window's knots (the first two, one shared value); the rest follow it.
+constexpr int kDirectSoundKnots = 2;
 constexpr double kMaxGainDb = 24.0;
 
 // The band responses on the bins of a real FFT of `fft_length` at 16 kHz: [bands][bins], each >= 0,

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -249,16 +250,23 @@ TEST_F(GanCli, PrintSettingsIsTheSettingsTrainingStores) {
 }
 
 // The energy of (out - in) relative to in's, both second-differenced (|H|^2 = 16 sin^4(pi f/fs):
-// 2 kHz counts ~60x as much as 500 Hz, ~2800x at 4 kHz), over the RIRs of two rir.scp lists with the
-// same ids: how much a translation changed the band above its waveform correction's (< 500 Hz).
-double high_band_change(const std::string& in_scp, const std::string& out_scp) {
+// 2 kHz counts ~60x as much as 500 Hz, ~2800x at 4 kHz), from 3 ms after each input's onset (its
+// first sample within 20 dB of its peak) to the end, over the RIRs of two rir.scp lists with the
+// same ids: how much a translation changed the band above its waveform correction's (< 500 Hz)
+// after the direct sound.
+double high_band_change_after_direct(const std::string& in_scp, const std::string& out_scp) {
   const auto ins = tsrir::read_rir_refs(in_scp, nullptr), outs = tsrir::read_rir_refs(out_scp, nullptr);
   EXPECT_EQ(ins.size(), outs.size());
   double changed = 0, total = 0;
   for (size_t i = 0; i < std::min(ins.size(), outs.size()); ++i) {
     EXPECT_EQ(ins[i].id, outs[i].id);
-    const auto a = tsrir::read_audio(ins[i].rxfilename).samples, b = tsrir::read_audio(outs[i].rxfilename).samples;
-    for (size_t k = 1; k + 1 < std::min(a.size(), b.size()); ++k) {
+    const tsrir::Signal in = tsrir::read_audio(ins[i].rxfilename);
+    const auto &a = in.samples, b = tsrir::read_audio(outs[i].rxfilename).samples;
+    float peak = 0;
+    for (float x : a) peak = std::max(peak, std::abs(x));
+    size_t onset = 0;
+    while (onset < a.size() && std::abs(a[onset]) < 0.1f * peak) ++onset;
+    for (size_t k = std::max<size_t>(1, onset + size_t(0.003 * in.sample_rate_hz)); k + 1 < std::min(a.size(), b.size()); ++k) {
       const double da = double(a[k + 1]) - 2.0 * a[k] + a[k - 1], db = double(b[k + 1]) - 2.0 * b[k] + b[k - 1];
       changed += (db - da) * (db - da), total += da * da;
     }
@@ -267,20 +275,23 @@ double high_band_change(const std::string& in_scp, const std::string& out_scp) {
 }
 
 // --identity-gain-weight: G_SR, a band-gain generator, trained with a strong gain identity changes
-// real RIRs (its own domain) above 500 Hz less than the same training without it. Fast training (no
-// warm-up, a 60x learning rate) so that the gains move well away from 0 in 40 steps.
+// real RIRs (its own domain) above 500 Hz after their direct sound (the knots the identity holds)
+// less than the same training without it. Fast training (no warm-up, a 60x learning rate) so that
+// the gains move well away from 0 in 40 steps; the waveform correction held near zero in both
+// (--correction-weight=100), so that what changes is the gains'. The bound, a quarter: seeds 4 and
+// 5 (not this test's 3) gave 0.10 and 0.06.
 TEST_F(GanCli, GainIdentityKeepsOwnDomainBandLevels) {
   std::map<std::string, double> change;
   for (const std::string weight : {"0", "300"}) {
     const std::string model = "ig" + weight;
-    RunResult r = run(train("--steps=40 --generator=band-gain --warmup-steps=0 --learning-rate=2e-3 "
+    RunResult r = run(train("--steps=40 --generator=band-gain --warmup-steps=0 --learning-rate=2e-3 --correction-weight=100 "
                             "--identity-gain-weight=" + weight, model), dir_);
     ASSERT_EQ(r.status, 0) << r.err;
     r = run(kBin + "/gas-to-real --model=" + dir_ + "/" + model + " " + real_ + " " + dir_ + "/t" + model, dir_);
     ASSERT_EQ(r.status, 0) << r.err;
-    change[weight] = high_band_change(real_, dir_ + "/t" + model + "/rir.scp");
+    change[weight] = high_band_change_after_direct(real_, dir_ + "/t" + model + "/rir.scp");
   }
-  std::cerr << "high-band change of real RIRs: without " << change["0"] << ", with " << change["300"] << "\n";
+  std::cerr << "high-band change of real RIRs after the direct sound: without " << change["0"] << ", with " << change["300"] << "\n";
   EXPECT_GT(change["0"], 1e-3);  // without it the gains did move (else the comparison says nothing)
   EXPECT_LT(change["300"], 0.25 * change["0"]);
 }
