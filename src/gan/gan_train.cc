@@ -264,8 +264,7 @@ class Trainer {
       // One batched pass of g over [source; f(target); target].
       const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
       // The translation pass's gains are the first b rows of the batched pass's.
-      const torch::Tensor gains = translation_penalty(g, b, real_side ? &L->gain_rms_db : nullptr) +
-                                  identity_gain_penalty(g, 2 * b, b);
+      const torch::Tensor gains = generator_penalties(g, b, 2 * b, real_side ? &L->gain_rms_db : nullptr);
       const torch::Tensor translated = out.narrow(0, 0, b);
       const torch::Tensor out_float = out.to(torch::kFloat);
       const torch::Tensor target_cycled = out_float.narrow(0, b, b);
@@ -316,11 +315,9 @@ class Trainer {
         // seeds were re-run with it, bench/RESULTS.md). The identity columns of the loss log
         // read "nan" (not measured).
         const torch::Tensor out_sr = m_.g_real->forward(identity ? torch::cat({s, r}, 0) : s);
-        const torch::Tensor gains_sr =
-            translation_penalty(m_.g_real, b, &L->gain_rms_db) + identity_gain_penalty(m_.g_real, b, b);
+        const torch::Tensor gains_sr = generator_penalties(m_.g_real, b, b, &L->gain_rms_db);
         const torch::Tensor out_rs = m_.g_synthetic->forward(identity ? torch::cat({r, s}, 0) : r);
-        const torch::Tensor gains_rs =
-            translation_penalty(m_.g_synthetic, b, nullptr) + identity_gain_penalty(m_.g_synthetic, b, b);
+        const torch::Tensor gains_rs = generator_penalties(m_.g_synthetic, b, b, nullptr);
         fake_r = out_sr.narrow(0, 0, b);
         fake_s = out_rs.narrow(0, 0, b);
         const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
@@ -364,10 +361,16 @@ class Trainer {
     L->d_synthetic = discriminator_update(m_.d_synthetic, m_.optimizers[3], s, fake_s.detach(), draw, "D_synthetic");
   }
 
-  // The penalties on the first `rows` of a generator's last pass (its translations):
+  // The penalties on a generator's last pass: on its first `rows` (its translations),
   // --correction-weight's on the waveform correction (residual and band-gain) and --gain-weight's
-  // on the log gains (band-gain; their RMS in dB into *rms_db); zero where there is neither.
-  torch::Tensor translation_penalty(const gan::Generator& g, int64_t rows, double* rms_db) const {
+  // on the log gains (band-gain; their RMS in dB into *rms_db); on the `rows` from `identity_first`
+  // (its identity rows: RIRs of its own domain, where the pass has them), --identity-gain-weight's
+  // on the log gains at the knots after the direct sound. The direct-sound gain is left to
+  // --gain-weight: held by the identity too, the direct kind's translators moved the direct sound
+  // 0.25-0.50 of the gap on five seeds, 0.59-1.04 without it there (bench/RESULTS.md), while what
+  // the identity is for, the bands' decay and early energy, lies in the later knots. Zero where
+  // there is none.
+  torch::Tensor generator_penalties(const gan::Generator& g, int64_t rows, int64_t identity_first, double* rms_db) const {
     torch::Tensor penalty;  // undefined until a term exists, so that it lives on the terms' device
     const auto add = [&penalty](const torch::Tensor& term) { penalty = penalty.defined() ? penalty + term : term; };
     const torch::Tensor& c = g->last_correction_ms();
@@ -379,24 +382,14 @@ class Trainer {
       const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
       if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
       add(m_.settings.gain_weight * mean_square);
+      if (m_.settings.identity_gain_weight > 0 && v.size(0) >= identity_first + rows) {
+        const torch::Tensor after_direct =
+            v.narrow(0, identity_first, rows).narrow(2, gan::kDirectSoundKnots, v.size(2) - gan::kDirectSoundKnots);
+        add(m_.settings.identity_gain_weight * after_direct.to(torch::kFloat).pow(2).mean());
+      }
     }
     // None: a CPU zero, which adds to a loss on any device (a 0-dim tensor acts as a scalar).
     return penalty.defined() ? penalty : torch::zeros({}, torch::kFloat);
-  }
-
-  // --identity-gain-weight's penalty on the log gains of rows [first, first + rows) of a
-  // generator's last pass (its identity rows: RIRs of its own domain), at the knots after the
-  // direct sound; zero where there is none. The direct-sound gain is left to --gain-weight: held
-  // by the identity too, the direct kind's translators moved the direct sound 0.25-0.50 of the gap
-  // on five seeds, 0.59-0.75 without it there (bench/RESULTS.md), while what the identity is for,
-  // the bands' decay and early energy, lies in the later knots.
-  torch::Tensor identity_gain_penalty(const gan::Generator& g, int64_t first, int64_t rows) const {
-    const torch::Tensor& v = g->last_log_gains();
-    if (!v.defined() || m_.settings.identity_gain_weight <= 0 || v.size(0) < first + rows) {
-      return torch::zeros({}, torch::kFloat);
-    }
-    const torch::Tensor after_direct = v.narrow(0, first, rows).narrow(2, gan::kDirectSoundKnots, v.size(2) - gan::kDirectSoundKnots);
-    return m_.settings.identity_gain_weight * after_direct.to(torch::kFloat).pow(2).mean();
   }
 
   // LSGAN: 5 * [mean((D(own domain) - 1)^2) + mean(D(translated into it)^2)].
