@@ -59,12 +59,15 @@ def main():
         cmd, mach = meta(L)
         for r in rows(L, r"1 core"):
             room = r[0].split(" ")[0]
-            r = r + ["-"] * (11 - len(r))
-            ours, ism, pra_i, xi, pra_h, xh, rg, xr, rgi, xri = r[1:11]
+            r = r + ["-"] * (13 - len(r))
+            ours, ism, pra_i, xi, pra_h, xh, rg, xr, rgi, xri, same, xsame = r[1:13]
+            # Runs since 2026-11-28 also time tsrir at pra hybrid's own RIR length: "<s> (<length> s)".
+            same_text = "" if same == "-" else "; tsrir gas at pra hybrid's length (%s) %s (%s)" % (
+                same.split("(")[-1].rstrip(")"), ms(same.split(" ")[0]), xsame)
             items.append(("rir-simulate, %s room, 1 core CPU per 1 s RIR" % room,
                           "tsrir gas %s (ism only %s); pyroomacoustics ISM %s (peer time / tsrir time %s), hybrid %s (%s); "
-                          "RIR-Generator, all images of 1 s, %s (%s); on tsrir's image set %s (%s vs tsrir ism only)"
-                          % (ms(ours), ms(ism), ms(pra_i), xi, ms(pra_h), xh, ms(rg), xr, ms(rgi), xri), cmd, mach))
+                          "RIR-Generator, all images of 1 s, %s (%s); on tsrir's image set %s (%s vs tsrir ism only)%s"
+                          % (ms(ours), ms(ism), ms(pra_i), xi, ms(pra_h), xh, ms(rg), xr, ms(rgi), xri, same_text), cmd, mach))
         for r in rows(L, r"cores wall"):
             room = r[0].split(" ")[0]
             r = r + ["-"] * (11 - len(r))

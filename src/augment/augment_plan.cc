@@ -82,17 +82,36 @@ void resolve_noise_offsets(const std::map<long, double>& noise_duration_s, std::
   }
 }
 
-std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program) {
+std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program,
+                            const NoiseChannels& channels) {
   const NoiseChoice& choice = sources.noises.at(static_cast<size_t>(noise.noise));
-  if (!noise.needs_nested_reverberation()) return choice.rxfilename;
+  const bool one_channel = channels.channel >= 0;
+  if (!noise.needs_nested_reverberation() && !one_channel) return choice.rxfilename;
+  // A piped noise feeds the command through stdin; a file is its input argument.
+  const bool piped = is_pipe_rxfilename(choice.rxfilename);
+  const std::string before = piped ? trim(choice.rxfilename) + " " : std::string();
+  std::string input = "-";
+  if (!piped) {
+    input = trim(choice.rxfilename);
+    if (starts_with(input, "-")) input = "./" + input;
+    input = shell_quote(input);
+  }
+  const std::string c = std::to_string(channels.channel);
+  if (!noise.needs_nested_reverberation())  // one channel of a noise added as it is (Kaldi's program would drop a sample)
+    return before + "sox -D -t wav " + input + " -t wav - remix " + std::to_string(channels.channel + 1) + " |";
   std::string command = shell_quote(program);
   if (noise.rir >= 0)
     command += " " + shell_quote("--impulse-response=" + sources.rirs.at(static_cast<size_t>(noise.rir)).rxfilename);
   if (noise.extend_to_s > 0) command += " --duration=" + pipe_number(noise.extend_to_s);
-  if (is_pipe_rxfilename(choice.rxfilename)) return trim(choice.rxfilename) + " " + command + " - - |";
-  std::string file = trim(choice.rxfilename);
-  if (starts_with(file, "-")) file = "./" + file;
-  return command + " " + shell_quote(file) + " - |";
+  if (one_channel) command += (noise.rir >= 0 ? " --rir-channel=" : " --input-wave-channel=") + c;
+  if (channels.every && noise.rir >= 0) command += " --multi-channel-output=true";
+  if (!channels.every || noise.rir >= 0) return before + command + " " + input + " - |";
+  if (channels.count < 1) throw Error("internal: the channel count of noise '" + choice.id + "' is not known");
+  std::string merged = "sox -D -M";
+  for (int k = 0; k < channels.count; ++k)
+    merged += " -t wav " + shell_quote("|" + before + command + " --input-wave-channel=" + std::to_string(k) + " " +
+                                       input + " -");
+  return merged + " -t wav - |";
 }
 
 namespace {
@@ -101,6 +120,21 @@ std::string joined(const std::vector<std::string>& items) {
   std::string out;
   for (size_t i = 0; i < items.size(); ++i) out += (i ? "," : "") + items[i];
   return out;
+}
+
+// What a pipe for Kaldi's program needs of a noise's channels (none for one microphone; ours
+// takes the noise whole and chooses with --noise-channel).
+NoiseChannels kaldi_noise_channels(const RecordingPlan& plan, const PlannedNoise& noise, const PipeOptions& options) {
+  NoiseChannels channels;
+  if (options.tsrir_extensions) return channels;
+  if (plan.rir_channel >= 0) {
+    channels.channel = plan.rir_channel;
+  } else if (options.multi_channel_output) {
+    channels.every = true;
+    auto it = options.noise_channels.find(noise.noise);
+    if (it != options.noise_channels.end()) channels.count = it->second;
+  }
+  return channels;
 }
 
 }  // namespace
@@ -125,7 +159,9 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   if (options.multi_channel_output) out += " --multi-channel-output=true";
   if (plan.rir_channel >= 0) out += " --rir-channel=" + std::to_string(plan.rir_channel);
   // A split entry takes the same channel of its noises (wav_reverberate.h's array rules).
-  if (plan.rir_channel >= 0 && !plan.noises.empty()) out += " --noise-channel=" + std::to_string(plan.rir_channel);
+  // (Kaldi's program is given each noise's channel alone: noise_signal_rx.)
+  if (plan.rir_channel >= 0 && !plan.noises.empty() && options.tsrir_extensions)
+    out += " --noise-channel=" + std::to_string(plan.rir_channel);
   if (options.sample_rate_hz > 0) out += " --sample-rate=" + format_double(options.sample_rate_hz);
   if (plan.rir >= 0)
     out += " " + shell_quote("--impulse-response=" + sources.rirs[static_cast<size_t>(plan.rir)].rxfilename);
@@ -142,7 +178,7 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
         throw Error(sources.rirs[static_cast<size_t>(noise.rir)].where + ": RIR rxfilename '" + nested_rirs.back() +
                     "' contains a comma, which wav-reverberate's lists cannot hold; use --write-wavs");
       const std::string rx = in_process ? sources.noises[static_cast<size_t>(noise.noise)].rxfilename
-                                        : noise_signal_rx(noise, sources, options.program);
+                                        : noise_signal_rx(noise, sources, options.program, kaldi_noise_channels(plan, noise, options));
       if (rx.find(',') != std::string::npos) {
         const NoiseChoice& choice = sources.noises[static_cast<size_t>(noise.noise)];
         throw Error(choice.where + ": noise '" + choice.id + "' gives the signal '" + rx +

@@ -70,11 +70,27 @@ struct PipeOptions {
   // > 0 (tsrir's program only): --sample-rate=<Hz> in every pipe, the data dir's rate the speech is
   // resampled to (reverberate-data --sample-rate; rate_policy.h).
   double sample_rate_hz = 0;
+  // Kaldi's program with --multi-channel-output: each noise's channel count (index into
+  // AugmentSources::noises), for the noises whose nested step has no RIR (noise_signal_rx).
+  std::map<long, int> noise_channels;
+};
+
+// The channels of a noise a pipe for Kaldi's program must keep (an array's far-field data, issue
+// 33). Kaldi's nested `wav-reverberate` makes one channel unless told otherwise: --multi-channel-
+// output=true keeps one per channel of its RIR, --rir-channel / --input-wave-channel choose one,
+// and without an RIR nothing keeps several (--multi-channel-output then gives none), so those
+// channels are made one by one and merged by SoX (`sox -M`, exact for 16-bit samples).
+struct NoiseChannels {
+  bool every = false;  // keep every channel (--multi-channel-output) ...
+  int count = 0;       // ... of this many (needed when the nested step has no RIR)
+  int channel = -1;    // >= 0: this channel alone (a --split-channels entry)
 };
 
 // The rxfilename of one planned noise's signal: the noise itself, or Kaldi's nested
-// "<program> [--impulse-response=<rir>] [--duration=<s>] <noise> - |" ("<noise pipe> <program> ... - - |").
-std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program);
+// "<program> [--impulse-response=<rir>] [--duration=<s>] <noise> - |" ("<noise pipe> <program> ... - - |");
+// with `channels` (an array, NoiseChannels) the form that keeps those channels.
+std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program,
+                            const NoiseChannels& channels = {});
 
 // The wav.scp value for a plan: the original rxfilename if nothing is applied, else
 // "[<source pipe> |] <program> --shift-output=... [--impulse-response=<rir>]

@@ -350,6 +350,20 @@ void check_array_noise_channels(const std::vector<RecordingPlan>& plans, const A
   }
 }
 
+// The channel count of each noise that is added without an RIR (index -> channels), which the
+// pipes for Kaldi's program make channel by channel (noise_signal_rx).
+std::map<long, int> unreverberated_noise_channels(const std::vector<RecordingPlan>& plans, const AugmentSources& sources) {
+  std::map<long, int> channels;
+  for (const RecordingPlan& recording : plans) {
+    for (const PlannedNoise& noise : recording.noises) {
+      if (noise.rir >= 0 || channels.count(noise.noise)) continue;
+      const NoiseChoice& choice = sources.noises[static_cast<size_t>(noise.noise)];
+      channels[noise.noise] = rx_audio_header(choice.rxfilename, false, choice.where + " (noise '" + choice.id + "')").channels;
+    }
+  }
+  return channels;
+}
+
 // (copy, input recording id) -> the suffixes of its output recordings ("" unless split).
 using ChannelSuffixes = std::map<std::pair<int, std::string>, std::vector<std::string>>;
 ChannelSuffixes channel_suffixes(const std::vector<RecordingPlan>& plans) {
@@ -385,11 +399,7 @@ std::map<std::string, std::string> pipe_wav_scp(const std::vector<RecordingPlan>
   pipe.tsrir_extensions = options.pipe_dialect == PipeDialect::kTsrir ||
                           (options.pipe_dialect == PipeDialect::kAuto && is_tsrir_pipe_program(pipe.program));
   if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
-  if ((plan.multi_channel_output || plan.split_channels) && !pipe.tsrir_extensions && !plan.sources.noises.empty())
-    throw Error(std::string(plan.split_channels ? "--split-channels" : "--multi-channel-output") +
-                " with noises needs tsrir's wav-reverberate in the pipes (Kaldi's nested `wav-reverberate --duration` "
-                "keeps one channel of a noise): the pipe program " + pipe.program + " is taken to be Kaldi's; use "
-                "--write-wavs or our wav-reverberate");
+  if (plan.multi_channel_output && !pipe.tsrir_extensions) pipe.noise_channels = unreverberated_noise_channels(plans, plan.sources);
   check_recording_rates(input.wav_scp, dir_rate, pipe.sample_rate_hz > 0, in_dir, options.num_threads);
   std::map<std::string, std::string> wav_scp;
   for (const RecordingPlan& recording : plans) wav_scp[recording.new_id] = format_pipe(recording, plan.sources, pipe);

@@ -9,7 +9,7 @@
 
 namespace tsrir {
 
-// Smallest n' >= n of the form 2^a 3^b 5^c (fast for FFTW).
+// Smallest n' >= n of the form 2^a 3^b 5^c with a >= 3 (fast for FFTW's real transforms); 1 for n <= 1.
 size_t next_fast_fft_size(size_t n);
 
 class RealFft {

@@ -6,7 +6,7 @@
   compare KALDI_DIR OURS_DIR DATA_DIR
                              the output structure (files, ids) and the statistics of the random
                              choices read back from both wav.scp files, within sampling error
-  wav-diff A.wav B.wav       the largest sample difference in LSB (int16), printed
+  wav-diff A.wav B.wav       the largest sample difference in LSB (int16), printed (any channel count)
   delta-check IN.wav OUT.wav GAIN
                              OUT against the exact answer for a one-tap RIR (IN * GAIN), in LSB
 """
@@ -291,8 +291,16 @@ def compare(kaldi_dir, ours_dir, data_dir):
     return 1 if c.failures else 0
 
 
+def wav_channels(path):
+    with wave.open(path, "rb") as w:
+        return w.getnchannels()
+
+
 def wav_diff(a, b):
     x, y = read_wav(a), read_wav(b)
+    if wav_channels(a) != wav_channels(b):
+        print("channels %d vs %d" % (wav_channels(a), wav_channels(b)))
+        return 1
     if len(x) != len(y):
         print("length %d vs %d" % (len(x), len(y)))
         return 1

@@ -74,6 +74,10 @@ TEST(Fft, ParsevalAndFastSizes) {
   EXPECT_NEAR(freq_energy / n, time_energy, 1e-4 * time_energy);
   EXPECT_EQ(next_fast_fft_size(1025), 1080u);
   EXPECT_EQ(next_fast_fft_size(7), 8u);
+  // Never a size with fewer than three factors of 2 (odd 16875, 2 x 9375 = 18750: 2-4x slower).
+  EXPECT_EQ(next_fast_fft_size(16801), 17280u);
+  EXPECT_EQ(next_fast_fft_size(18433), 19200u);
+  for (size_t n = 2; n < 5000; n += 7) EXPECT_EQ(next_fast_fft_size(n) % 8, 0u) << n;
 }
 
 TEST(Bands, CentresAndLabels) {
