@@ -97,8 +97,12 @@ std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sou
     input = shell_quote(input);
   }
   const std::string c = std::to_string(channels.channel);
-  if (!noise.needs_nested_reverberation())  // one channel of a noise added as it is (Kaldi's program would drop a sample)
-    return before + "sox -D -t wav " + input + " -t wav - remix " + std::to_string(channels.channel + 1) + " |";
+  // One channel of a noise added as it is: SoX, as Kaldi's program without an RIR or --duration
+  // drops the last sample (its output has input + RIR - 1 samples). --no-glob: a file name is not a pattern.
+  if (!noise.needs_nested_reverberation()) {
+    return before + "sox -D -t wav " + (piped ? "" : "--no-glob ") + input + " -t wav - remix " +
+           std::to_string(channels.channel + 1) + " |";
+  }
   std::string command = shell_quote(program);
   if (noise.rir >= 0)
     command += " " + shell_quote("--impulse-response=" + sources.rirs.at(static_cast<size_t>(noise.rir)).rxfilename);
@@ -109,7 +113,7 @@ std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sou
   if (channels.count < 1) throw Error("internal: the channel count of noise '" + choice.id + "' is not known");
   std::string merged = "sox -D -M";
   for (int k = 0; k < channels.count; ++k)
-    merged += " -t wav " + shell_quote("|" + before + command + " --input-wave-channel=" + std::to_string(k) + " " +
+    merged += " -t wav --no-glob " + shell_quote("|" + before + command + " --input-wave-channel=" + std::to_string(k) + " " +
                                        input + " -");
   return merged + " -t wav - |";
 }
@@ -129,7 +133,7 @@ NoiseChannels kaldi_noise_channels(const RecordingPlan& plan, const PlannedNoise
   if (options.tsrir_extensions) return channels;
   if (plan.rir_channel >= 0) {
     channels.channel = plan.rir_channel;
-  } else if (options.multi_channel_output) {
+  } else if (options.multi_channel_output && plan.rir >= 0) {
     channels.every = true;
     auto it = options.noise_channels.find(noise.noise);
     if (it != options.noise_channels.end()) channels.count = it->second;
@@ -156,7 +160,9 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   out += shell_quote(options.program);
   out += " " + std::string(options.reverb.shift_output ? "--shift-output=true" : "--shift-output=false");
   if (!options.reverb.normalize_output) out += " --normalize-output=false";
-  if (options.multi_channel_output) out += " --multi-channel-output=true";
+  // Kaldi's binary gives no channel at all with --multi-channel-output and no RIR: a recording
+  // whose speech is not reverberated stays one channel, as ours makes it (kaldi_noise_channels).
+  if (options.multi_channel_output && (plan.rir >= 0 || options.tsrir_extensions)) out += " --multi-channel-output=true";
   if (plan.rir_channel >= 0) out += " --rir-channel=" + std::to_string(plan.rir_channel);
   // A split entry takes the same channel of its noises (wav_reverberate.h's array rules).
   // (Kaldi's program is given each noise's channel alone: noise_signal_rx.)

@@ -157,21 +157,27 @@ while read -r id line; do
   n=$((n + 1))
 done < <(grep wav-reverberate ours_kpipes/wav.scp)
 # An array (issue 33): 3-channel RIRs of one room, a 3-channel isotropic noise and mono point
-# sources; our reverberate-data's pipes for Kaldi's program in both forms (--multi-channel-output,
-# --split-channels) run by Kaldi's binary (and SoX, which merges the isotropic noise's channels),
-# against our own pipes run by ours with --kaldi-compat.
+# sources, some speech left dry; our reverberate-data's pipes for Kaldi's program in both forms
+# (--multi-channel-output, --split-channels; and split with a 3-channel point source added as it is)
+# run by Kaldi's binary (and SoX, which merges or picks a noise's channels), against our own pipes
+# run by ours with --kaldi-compat.
 sox -M rirs/r1a.wav rirs/r1b.wav rirs/r2a.wav rirs/arrA.wav && sox -M rirs/r3a.wav rirs/r3b.wav rirs/r1a.wav rirs/arrB.wav
 sox -M noises/i1.wav noises/i1b.wav noises/i3.wav noises/iarr.wav
 printf -- '--rir-id arrA --room-id roomA rirs/arrA.wav\n--rir-id arrB --room-id roomA rirs/arrB.wav\n' > rirs/list_arr
 printf -- '--noise-id iarr --noise-type isotropic --bg-fg-type background --room-linkage roomA noises/iarr.wav\n%s\n%s\n' \
   '--noise-id pf2 --noise-type point-source --bg-fg-type foreground noises/pf2.wav' \
   '--noise-id pb1 --noise-type point-source --bg-fg-type background noises/pb1.wav' > noises/list_arr
-arr_opts=(--rir-set-parameters rirs/list_arr --noise-set-parameters noises/list_arr --max-noises-per-minute 8 --random-seed 3)
-for form in multi-channel-output split-channels; do
-  "$bin/reverberate-data" "${arr_opts[@]}" --$form true --pipe-program "$kbin/wav-reverberate" data/small arr_k_$form \
-    >arr_k.log 2>&1 || { tail -5 arr_k.log; echo "FAIL: --$form with --pipe-program=Kaldi's"; exit 1; }
-  "$bin/reverberate-data" "${arr_opts[@]}" --$form true data/small arr_o_$form >arr_o.log 2>&1 ||
-    { tail -5 arr_o.log; echo "FAIL: --$form"; exit 1; }
+printf -- '--noise-id p3 --noise-type point-source --bg-fg-type foreground noises/iarr.wav\n' > noises/list_arr_as_is
+arr_opts=(--rir-set-parameters rirs/list_arr --max-noises-per-minute 8 --random-seed 3 --speech-rvb-probability 0.7)
+for form in multi-channel-output split-channels as-is; do
+  case $form in
+    as-is) form_opts=(--split-channels true --noise-set-parameters noises/list_arr_as_is --point-source-noise-rir none) ;;
+    *) form_opts=(--$form true --noise-set-parameters noises/list_arr) ;;
+  esac
+  "$bin/reverberate-data" "${arr_opts[@]}" "${form_opts[@]}" --pipe-program "$kbin/wav-reverberate" data/small arr_k_$form \
+    >arr_k.log 2>&1 || { tail -5 arr_k.log; echo "FAIL: ${form_opts[*]} with --pipe-program=Kaldi's"; exit 1; }
+  "$bin/reverberate-data" "${arr_opts[@]}" "${form_opts[@]}" data/small arr_o_$form >arr_o.log 2>&1 ||
+    { tail -5 arr_o.log; echo "FAIL: ${form_opts[*]}"; exit 1; }
   while read -r id line; do
     ours_line=$(grep "^$id " arr_o_$form/wav.scp | cut -d' ' -f2-)
     bash -c "${line% |} > a_kaldi.wav" 2>>pipes.log || { echo "FAIL: Kaldi's binary runs our array pipe $id"; fail=1; continue; }
@@ -180,8 +186,8 @@ for form in multi-channel-output split-channels; do
       { echo "FAIL: our array pipe $id"; fail=1; continue; }
     read -r d rms len < <(python3 "$here/kaldi_parity.py" wav-diff a_compat.wav a_kaldi.wav)
     [[ $d =~ ^[0-9]+$ ]] || { echo "FAIL: array pipe $id: $d $rms $len"; fail=1; continue; }
-    printf 'array pipe (--%s) %-16s %d noises: --kaldi-compat max %3d LSB, rms %.2f\n' "$form" "$id" \
-      "$(grep -o 'snrs=[^ ]*' <<<"$line" | tr ',' '\n' | wc -l)" "$d" "$rms"
+    printf 'array pipe (%s) %-16s %d noises%s: --kaldi-compat max %3d LSB, rms %.2f\n' "$form" "$id" \
+      "$(grep -o 'snrs=[^ ]*' <<<"$line" | tr ',' '\n' | wc -l)" "$(grep -q impulse-response= <<<"${line%%--additive*}" || echo ", dry")" "$d" "$rms"
     [ "$d" -gt "$worst" ] && worst=$d
     n=$((n + 1))
   done < <(grep -- '--additive-signals' arr_k_$form/wav.scp)

@@ -416,18 +416,27 @@ TEST_F(ReverberateData, ArrayNoisesPerChannelInBothForms) {
     EXPECT_TRUE(merged) << form;
   }
   // A 3-channel point source added as it is (--point-source-noise-rir none): Kaldi's program is
-  // given channel c of it by SoX in the split form, the whole file in the multichannel form.
+  // given channel c of it by SoX in the split form, the whole file in the multichannel form. And
+  // speech left dry (--speech-rvb-probability 0) with noises: one channel, as ours makes it (Kaldi's
+  // binary gives none with --multi-channel-output and no RIR).
   write_text(dir + "/lists/noise_as_is", "--noise-id p3 --noise-type point-source --bg-fg-type foreground noise/iso3.wav\n");
-  for (const std::string form : {"multi-channel-output", "split-channels"}) {
+  const std::vector<std::pair<std::string, std::string>> as_is_forms = {
+      {"multi", "--multi-channel-output true"}, {"split", "--split-channels true"},
+      {"dry", "--multi-channel-output true --speech-rvb-probability 0"}};
+  for (const auto& [name, form] : as_is_forms) {
     const std::string as_is = "--rir-set-parameters lists/rir_list_array --noise-set-parameters lists/noise_as_is "
-                              "--point-source-noise-rir none --max-noises-per-recording 1 --" + form + " true ";
-    ASSERT_EQ(run_in(dir, as_is + "arr_in asis_ours_" + form).status, 0);
-    ASSERT_EQ(run_in(dir, as_is + "--pipe-dialect kaldi arr_in asis_kaldi_" + form).status, 0);
-    const tsrir::DataDir ours = tsrir::read_data_dir(dir + "/asis_ours_" + form);
-    const tsrir::DataDir kaldi = tsrir::read_data_dir(dir + "/asis_kaldi_" + form);
+                              "--point-source-noise-rir none --max-noises-per-recording 1 " + form + " ";
+    ASSERT_EQ(run_in(dir, as_is + "arr_in asis_ours_" + name).status, 0);
+    ASSERT_EQ(run_in(dir, as_is + "--pipe-dialect kaldi arr_in asis_kaldi_" + name).status, 0);
+    const tsrir::DataDir ours = tsrir::read_data_dir(dir + "/asis_ours_" + name);
+    const tsrir::DataDir kaldi = tsrir::read_data_dir(dir + "/asis_kaldi_" + name);
+    ASSERT_EQ(kaldi.wav_scp.size(), ours.wav_scp.size());
     for (const auto& [id, pipe] : kaldi.wav_scp) {
       SCOPED_TRACE(pipe);
-      EXPECT_EQ(pipe.find("remix") != std::string::npos, form == "split-channels");
+      EXPECT_EQ(pipe.find("remix") != std::string::npos, name == "split");
+      const bool dry = name == "dry";
+      EXPECT_EQ(pipe.find("--impulse-response") == std::string::npos, dry);
+      if (dry) EXPECT_EQ(pipe.find("--multi-channel-output"), std::string::npos);
       EXPECT_EQ(run_pipe(pipe, id), run_pipe(ours.wav_scp.at(id), id)) << id;
     }
   }
