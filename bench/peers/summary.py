@@ -62,7 +62,7 @@ def main():
             r = r + ["-"] * (13 - len(r))
             ours, ism, pra_i, xi, pra_h, xh, rg, xr, rgi, xri, same, xsame = r[1:13]
             # Runs since 2026-11-28 also time tsrir at pra hybrid's own RIR length: "<s> (<length> s)".
-            same_text = "" if same == "-" else "; tsrir gas at pra hybrid's length (%s) %s (%s)" % (
+            same_text = "" if same in ("-", "absent") else "; tsrir gas at pra hybrid's length (%s) %s (%s)" % (
                 same.split("(")[-1].rstrip(")"), ms(same.split(" ")[0]), xsame)
             items.append(("rir-simulate, %s room, 1 core CPU per 1 s RIR" % room,
                           "tsrir gas %s (ism only %s); pyroomacoustics ISM %s (peer time / tsrir time %s), hybrid %s (%s); "

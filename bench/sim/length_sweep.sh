@@ -28,8 +28,10 @@ cpu_ms() {  # <bin> <list> <length>: best of 3, ms per position
 echo "| length s | samples | 1 mic, A | 8 mics, A |${b:+ 1 mic, B | 8 mics, B |}"
 echo "|---|---|---|---|${b:+---|---|}"
 for len in $lengths; do
-  row="| $len | $(awk -v l="$len" 'BEGIN{printf "%d", l * 16000 + 0.5}') | $(cpu_ms "$a" one.txt "$len") | $(cpu_ms "$a" eight.txt "$len") |"
-  [ -n "$b" ] && row+=" $(cpu_ms "$b" one.txt "$len") | $(cpu_ms "$b" eight.txt "$len") |"
+  row="| $len | $(awk -v l="$len" 'BEGIN{printf "%d", l * 16000 + 0.5}') |"
+  for bin in $a $b; do  # an assignment keeps a failed substitution's status: a failed run ends the script
+    for list in one.txt eight.txt; do v=$(cpu_ms "$bin" $list "$len") || exit 1; row+=" $v |"; done
+  done
   echo "$row"
 done
 echo "A = $a${b:+, B = $b}. Load after: $(cut -d' ' -f1-3 /proc/loadavg)"
