@@ -33,8 +33,14 @@ pra_field() { sed -n "s/.*$1=\([0-9.]*\).*/\1/p"; }
 # The names of rooms.txt's rooms.
 room_names() { "$PRA_PYTHON" "$peers_dir/rooms.py" list | awk '{print $1}'; }
 
+# The kind of CPU, for bench/peers/results/<kind>/: intel, amd, or the vendor id in lower case.
+machine_kind() {
+  local v; v=$(grep -m1 'vendor_id' /proc/cpuinfo | cut -d: -f2 | tr -d ' ')
+  case $v in GenuineIntel) echo intel ;; AuthenticAMD) echo amd ;; *) echo "${v,,}" | tr -cd 'a-z0-9_-' ;; esac
+}
+
 machine_line() {
-  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg), temporary files on $(df -T "${TMPDIR:-/tmp}" | awk 'NR == 2 { print $2 }')"
   echo "peers: KALDI_ROOT=${KALDI_ROOT:-unset} PRA_PYTHONPATH=${PRA_PYTHONPATH:-unset} RIR_GENERATOR=${RIR_GENERATOR:-unset}"
 }
 

@@ -1,16 +1,18 @@
 #!/bin/bash
-# Runs every side-by-side benchmark and accuracy comparison, writes bench/peers/results/<name>.txt,
-# then regenerates the summary at the top of bench/RESULTS.md (summary.py).
+# Runs every side-by-side benchmark and accuracy comparison, writes bench/peers/results/<kind>/<name>.txt
+# (<kind>: this machine's CPU, intel or amd: common.sh's machine_kind), then regenerates the summary at the
+# top of bench/RESULTS.md (summary.py), which has a row per comparison and machine kind.
 #   bench/peers/run_all.sh [quick]      (quick: fewer repetitions, for a smoke run)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/common.sh"
-mkdir -p "$here/results"
+out_dir=$here/results/$(machine_kind)
+mkdir -p "$out_dir"
 q=${1:-}
 run() {  # name, command...
   local name=$1; shift
   echo "== $name: $*" >&2
-  { echo "\$ ${*//$peers_root\//}"; "$@"; } > "$here/results/$name.txt.tmp" 2>&1 && mv "$here/results/$name.txt.tmp" "$here/results/$name.txt"
+  { echo "\$ ${*//$peers_root\//}"; "$@"; } > "$out_dir/$name.txt.tmp" 2>&1 && mv "$out_dir/$name.txt.tmp" "$out_dir/$name.txt"
 }
 if [ "$q" = quick ]; then
   run sim_speed "$here/sim_speed.sh" 50 1 1
@@ -28,6 +30,6 @@ else
   run band_accuracy "$here/band_accuracy.sh"
 fi
 if have_rirgen; then run ism_accuracy "$PRA_PYTHON" "$here/ism_accuracy.py" "$TSRIR_BIN" "$RIR_GENERATOR" 20 100
-else echo "ism_accuracy: RIR-Generator absent" > "$here/results/ism_accuracy.txt"; fi
+else echo "ism_accuracy: RIR-Generator absent" > "$out_dir/ism_accuracy.txt"; fi
 run r3vival_t30 "$here/r3vival_t30.sh"
 "$PRA_PYTHON" "$here/summary.py"
