@@ -72,6 +72,13 @@ KnotPosition knot_positions(const torch::Tensor& onset, int64_t length, double s
   return p;
 }
 
+torch::Tensor identity_held_gains(const torch::Tensor& log_gains) {
+  const int64_t knots = log_gains.size(2);
+  return torch::cat({log_gains.narrow(2, kDirectSoundKnots, knots - kDirectSoundKnots).flatten(1),
+                     log_gains.narrow(1, 0, kIdentityDirectBands).narrow(2, 0, kDirectSoundKnots).flatten(1)},
+                    1);
+}
+
 torch::Tensor interpolate_knots(const torch::Tensor& values, const KnotPosition& at) {
   const int64_t batch = values.size(0), rows = values.size(1), n = at.segment.size(-1);
   const torch::Tensor segment = at.segment.expand({batch, rows, n});

@@ -49,6 +49,8 @@ constexpr int kBandGainKnots = 11;
 constexpr double kKnotMs[kBandGainKnots] = {-1.0, 1.0, 3.0, 6.0, 12.0, 24.0, 48.0, 96.0, 192.0, 384.0, 768.0};
 // The direct-sound window's knots (the first two, one shared value); the rest follow it.
 constexpr int kDirectSoundKnots = 2;
+// The lowest bands whose direct-sound knots the gain identity holds too (band 0: below 250 Hz).
+constexpr int kIdentityDirectBands = 1;
 constexpr double kMaxGainDb = 24.0;
 
 // The band responses on the bins of a real FFT of `fft_length` at 16 kHz: [bands][bins], each >= 0,
@@ -66,6 +68,14 @@ struct KnotPosition {
 KnotPosition knot_positions(const torch::Tensor& onset, int64_t length, double sample_rate_hz);
 // Values [batch, rows, knots] interpolated linearly in time at `at`: [batch, rows, length].
 torch::Tensor interpolate_knots(const torch::Tensor& values, const KnotPosition& at);
+
+// The log gains [rows, bands, knots] that the gain identity (--identity-gain-weight) holds, [rows, held]:
+// every band's knots after the direct sound, and the direct-sound knots of the lowest
+// kIdentityDirectBands bands. The other bands' direct sound is left to --gain-weight: held too,
+// the direct kind's translators moved the direct sound 0.25-0.50 of the gap on five seeds; not
+// held below 250 Hz, the decay kind's translators added a low-band part shared across RIRs
+// (lf_db 1.1-2.0 dB on two seeds; 0.14 and 0.33 with it held; bench/RESULTS.md).
+torch::Tensor identity_held_gains(const torch::Tensor& log_gains);
 
 class BandGainImpl : public torch::nn::Module {
  public:

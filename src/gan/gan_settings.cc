@@ -82,8 +82,8 @@ void GanSettings::Register(OptionsItf* opts) {
                  "(the paper has no such term)");
   opts->Register("identity-gain-weight", &identity_gain_weight,
                  "Band-gain generators: weight of the L2 penalty on the log gains (nepers^2) they predict after the direct "
-                 "sound for RIRs of their own domain, which should pass unchanged (a gain identity; 0 = none; the paper "
-                 "has no such term)");
+                 "sound, and at it below 250 Hz, for RIRs of their own domain, which should pass unchanged (a gain identity; "
+                 "0 = none; the paper has no such term)");
   opts->Register("correction-weight", &correction_weight,
                  "Residual and band-gain generators: weight of the L2 penalty on the waveform correction (its mean square "
                  "re the input's) in the generators' loss (0 = none; the paper has no such term)");

@@ -60,8 +60,9 @@ struct GanSettings {
   // key: 0.
   double gain_weight = 0.0;
   // Band-gain generators: weight of the same L2 penalty on the log gains a generator predicts
-  // after the direct sound for RIRs of its own domain (G_SR's for real RIRs, G_RS's for synthetic
-  // ones: the identity passes), which should pass unchanged. A gain identity in the gains' own
+  // after the direct sound (and at it below 250 Hz: gan::identity_held_gains) for RIRs of its own
+  // domain (G_SR's for real RIRs, G_RS's for synthetic ones: the identity passes), which should
+  // pass unchanged. A gain identity in the gains' own
   // units (nepers), where a quiet band's late level counts as much as its early one; the waveform
   // identity L1 hardly sees a tail 40 dB down (a departure; the paper has only the waveform
   // identity). Issue 34: without it the decay kind's translators changed the 500-1000 Hz decay

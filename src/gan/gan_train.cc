@@ -365,11 +365,8 @@ class Trainer {
   // --correction-weight's on the waveform correction (residual and band-gain) and --gain-weight's
   // on the log gains (band-gain; their RMS in dB into *rms_db); on the `rows` from `identity_first`
   // (its identity rows: RIRs of its own domain, where the pass has them), --identity-gain-weight's
-  // on the log gains at the knots after the direct sound. The direct-sound gain is left to
-  // --gain-weight: held by the identity too, the direct kind's translators moved the direct sound
-  // 0.25-0.50 of the gap on five seeds, 0.59-1.04 without it there (bench/RESULTS.md), while what
-  // the identity is for, the bands' decay and early energy, lies in the later knots. Zero where
-  // there is none.
+  // on the log gains gan::identity_held_gains() selects (the knots after the direct sound, and the
+  // direct sound below 250 Hz; why: its comment). Zero where there is none.
   torch::Tensor generator_penalties(const gan::Generator& g, int64_t rows, int64_t identity_first, double* rms_db) const {
     torch::Tensor penalty;  // undefined until a term exists, so that it lives on the terms' device
     const auto add = [&penalty](const torch::Tensor& term) { penalty = penalty.defined() ? penalty + term : term; };
@@ -383,9 +380,8 @@ class Trainer {
       if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
       add(m_.settings.gain_weight * mean_square);
       if (m_.settings.identity_gain_weight > 0 && v.size(0) >= identity_first + rows) {
-        const torch::Tensor after_direct =
-            v.narrow(0, identity_first, rows).narrow(2, gan::kDirectSoundKnots, v.size(2) - gan::kDirectSoundKnots);
-        add(m_.settings.identity_gain_weight * after_direct.to(torch::kFloat).pow(2).mean());
+        const torch::Tensor held = gan::identity_held_gains(v.narrow(0, identity_first, rows));
+        add(m_.settings.identity_gain_weight * held.to(torch::kFloat).pow(2).mean());
       }
     }
     // None: a CPU zero, which adds to a loss on any device (a 0-dim tensor acts as a scalar).

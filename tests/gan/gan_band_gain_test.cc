@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <set>
 
 #include "gan/gan_band_gain.h"
 #include "gan/gan_networks.h"
@@ -244,4 +245,29 @@ TEST(BandGain, TranslationForwardEqualsTrainingAndRowsAreIndependent) {
     const double scale = grad_all[i].norm().item<double>();
     EXPECT_LE((grad_alone[i] - grad_all[i]).norm().item<double>(), 1e-4 * scale + 1e-12) << "parameter " << i;
   }
+}
+
+// The gain identity holds every band's knots after the direct sound and the lowest band's direct
+// sound, nothing else: each log gain set to a distinct value (its index) is found among the held
+// ones exactly when it is one of those.
+TEST(BandGain, IdentityHoldsTheKnotsAfterTheDirectSoundAndTheLowBandsDirectSound) {
+  const int64_t rows = 2, count = kBandGainBands * kBandGainKnots;
+  const torch::Tensor gains = torch::arange(rows * count, torch::kFloat).reshape({rows, kBandGainBands, kBandGainKnots});
+  const torch::Tensor held = identity_held_gains(gains);
+  ASSERT_EQ(held.dim(), 2);
+  ASSERT_EQ(held.size(0), rows);
+  for (int64_t r = 0; r < rows; ++r) {
+    const auto values = held[r].contiguous();
+    const float* v = values.data_ptr<float>();
+    const std::set<float> found(v, v + values.numel());
+    EXPECT_EQ(found.size(), size_t(values.numel()));  // none twice
+    for (int band = 0; band < kBandGainBands; ++band) {
+      for (int knot = 0; knot < kBandGainKnots; ++knot) {
+        const bool want = knot >= kDirectSoundKnots || band < kIdentityDirectBands;
+        EXPECT_EQ(found.count(float(r * count + band * kBandGainKnots + knot)) == 1, want) << band << " " << knot;
+      }
+    }
+  }
+  EXPECT_EQ(kIdentityDirectBands, 1);  // below 250 Hz: kBandEdgesHz[0]
+  EXPECT_EQ(kBandEdgesHz[0], 250.0);
 }
