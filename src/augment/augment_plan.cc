@@ -82,32 +82,40 @@ void resolve_noise_offsets(const std::map<long, double>& noise_duration_s, std::
   }
 }
 
+namespace {
+
+// How a command reads an rxfilename: a pipe feeds it through stdin ("<pipe> " before the command,
+// argument "-"); a plain file is its argument, shell-quoted ("./" before a leading '-', so it is
+// never mistaken for an option).
+struct ShellInput {
+  std::string before, argument;
+};
+ShellInput shell_input(const std::string& rxfilename) {
+  if (is_pipe_rxfilename(rxfilename)) return {trim(rxfilename) + " ", "-"};
+  std::string file = trim(rxfilename);
+  if (starts_with(file, "-")) file = "./" + file;
+  return {"", shell_quote(file)};
+}
+
+}  // namespace
+
 std::string noise_signal_rx(const PlannedNoise& noise, const AugmentSources& sources, const std::string& program,
                             const NoiseChannels& channels) {
   const NoiseChoice& choice = sources.noises.at(static_cast<size_t>(noise.noise));
   const bool one_channel = channels.channel >= 0;
   if (!noise.needs_nested_reverberation() && !one_channel) return choice.rxfilename;
-  // A piped noise feeds the command through stdin; a file is its input argument.
-  const bool piped = is_pipe_rxfilename(choice.rxfilename);
-  const std::string before = piped ? trim(choice.rxfilename) + " " : std::string();
-  std::string input = "-";
-  if (!piped) {
-    input = trim(choice.rxfilename);
-    if (starts_with(input, "-")) input = "./" + input;
-    input = shell_quote(input);
-  }
-  const std::string c = std::to_string(channels.channel);
+  const auto [before, input] = shell_input(choice.rxfilename);
   // One channel of a noise added as it is: SoX, as Kaldi's program without an RIR or --duration
   // drops the last sample (its output has input + RIR - 1 samples). --no-glob: a file name is not a pattern.
   if (!noise.needs_nested_reverberation()) {
-    return before + "sox -D -t wav " + (piped ? "" : "--no-glob ") + input + " -t wav - remix " +
+    return before + "sox -D -t wav " + (before.empty() ? "--no-glob " : "") + input + " -t wav - remix " +
            std::to_string(channels.channel + 1) + " |";
   }
   std::string command = shell_quote(program);
   if (noise.rir >= 0)
     command += " " + shell_quote("--impulse-response=" + sources.rirs.at(static_cast<size_t>(noise.rir)).rxfilename);
   if (noise.extend_to_s > 0) command += " --duration=" + pipe_number(noise.extend_to_s);
-  if (one_channel) command += (noise.rir >= 0 ? " --rir-channel=" : " --input-wave-channel=") + c;
+  if (one_channel) command += (noise.rir >= 0 ? " --rir-channel=" : " --input-wave-channel=") + std::to_string(channels.channel);
   if (channels.every && noise.rir >= 0) command += " --multi-channel-output=true";
   if (!channels.every || noise.rir >= 0) return before + command + " " + input + " - |";
   if (channels.count < 1) throw Error("internal: the channel count of noise '" + choice.id + "' is not known");
@@ -147,17 +155,8 @@ std::string format_pipe(const RecordingPlan& plan, const AugmentSources& sources
   if (!plan.modified()) return plan.source_rx;
   // A plain file is read by the program itself (Kaldi writes "cat <file> |" first: one process
   // more per utterance); a pipe feeds it through stdin.
-  const bool piped_source = is_pipe_rxfilename(plan.source_rx);
-  std::string input = "-";
-  std::string out;
-  if (piped_source) {
-    out = trim(plan.source_rx) + " ";
-  } else {
-    input = trim(plan.source_rx);
-    if (starts_with(input, "-")) input = "./" + input;  // never mistaken for an option
-    input = shell_quote(input);
-  }
-  out += shell_quote(options.program);
+  const auto [before, input] = shell_input(plan.source_rx);
+  std::string out = before + shell_quote(options.program);
   out += " " + std::string(options.reverb.shift_output ? "--shift-output=true" : "--shift-output=false");
   if (!options.reverb.normalize_output) out += " --normalize-output=false";
   // Kaldi's binary gives no channel at all with --multi-channel-output and no RIR: a recording

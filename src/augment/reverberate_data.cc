@@ -322,9 +322,12 @@ std::vector<RecordingPlan> split_into_channels(std::vector<RecordingPlan> plans,
 // room) and N channels in each noise added without an RIR (isotropic, or --point-source-noise-rir
 // none): wav-reverberate --multi-channel-output's rule, which Kaldi's binary asserts. A mono
 // background noise is refused, as Kaldi refuses it, rather than copied to every microphone (which
-// would make a fully coherent "diffuse" noise).
-void check_array_noise_channels(const std::vector<RecordingPlan>& plans, const AugmentSources& sources) {
+// would make a fully coherent "diffuse" noise). Returns the channel count of each noise added
+// without an RIR to a reverberated recording (noise index -> channels), which the pipes for Kaldi's
+// program make channel by channel (PipeOptions::noise_channels).
+std::map<long, int> check_array_noise_channels(const std::vector<RecordingPlan>& plans, const AugmentSources& sources) {
   std::map<std::string, int> channels_of;
+  std::map<long, int> unreverberated;
   auto channels = [&](const std::string& rx, const std::string& where) {
     auto it = channels_of.find(rx);
     if (it == channels_of.end()) it = channels_of.emplace(rx, rx_audio_header(rx, false, where).channels).first;
@@ -346,22 +349,10 @@ void check_array_noise_channels(const std::vector<RecordingPlan>& plans, const A
                     "' is reverberated with RIR '" + rir.id + "' of " + std::to_string(n) + ": multichannel output " +
                     "needs one noise channel per RIR channel (a point source's RIR from the same array, an isotropic " +
                     "noise recorded with as many microphones), as wav-reverberate --multi-channel-output does");
+      if (!noise_rir) unreverberated[noise.noise] = k;
     }
   }
-}
-
-// The channel count of each noise that is added without an RIR (index -> channels), which the
-// pipes for Kaldi's program make channel by channel (noise_signal_rx).
-std::map<long, int> unreverberated_noise_channels(const std::vector<RecordingPlan>& plans, const AugmentSources& sources) {
-  std::map<long, int> channels;
-  for (const RecordingPlan& recording : plans) {
-    for (const PlannedNoise& noise : recording.noises) {
-      if (noise.rir >= 0 || channels.count(noise.noise)) continue;
-      const NoiseChoice& choice = sources.noises[static_cast<size_t>(noise.noise)];
-      channels[noise.noise] = rx_audio_header(choice.rxfilename, false, choice.where + " (noise '" + choice.id + "')").channels;
-    }
-  }
-  return channels;
+  return unreverberated;
 }
 
 // (copy, input recording id) -> the suffixes of its output recordings ("" unless split).
@@ -380,7 +371,8 @@ ChannelSuffixes channel_suffixes(const std::vector<RecordingPlan>& plans) {
 // resample (rate_policy.h).
 std::map<std::string, std::string> pipe_wav_scp(const std::vector<RecordingPlan>& plans, const ReverberatePlan& plan,
                                                  const std::string& in_dir, const DataDir& input,
-                                                 const DirSampleRate& dir_rate, const ReverberateDataOptions& options) {
+                                                 const DirSampleRate& dir_rate, const ReverberateDataOptions& options,
+                                                 const std::map<long, int>& unreverberated_noise_channels) {
   std::set<long> used_rirs;
   for (const RecordingPlan& recording : plans) {
     if (recording.rir >= 0) used_rirs.insert(recording.rir);
@@ -399,7 +391,7 @@ std::map<std::string, std::string> pipe_wav_scp(const std::vector<RecordingPlan>
   pipe.tsrir_extensions = options.pipe_dialect == PipeDialect::kTsrir ||
                           (options.pipe_dialect == PipeDialect::kAuto && is_tsrir_pipe_program(pipe.program));
   if (pipe.tsrir_extensions && dir_rate.given()) pipe.sample_rate_hz = dir_rate.rate_hz();
-  if (plan.multi_channel_output && !pipe.tsrir_extensions) pipe.noise_channels = unreverberated_noise_channels(plans, plan.sources);
+  if (plan.multi_channel_output && !pipe.tsrir_extensions) pipe.noise_channels = unreverberated_noise_channels;
   check_recording_rates(input.wav_scp, dir_rate, pipe.sample_rate_hz > 0, in_dir, options.num_threads);
   std::map<std::string, std::string> wav_scp;
   for (const RecordingPlan& recording : plans) wav_scp[recording.new_id] = format_pipe(recording, plan.sources, pipe);
@@ -566,7 +558,9 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   if (input.wav_scp.empty()) throw Error(in_dir + "/wav.scp: no recordings");
   std::vector<RecordingPlan> plans = plan_copies(in_dir, input, plan, options.num_threads);
   if (plan.split_channels) plans = split_into_channels(std::move(plans), plan.sources);
-  if (plan.split_channels || plan.multi_channel_output) check_array_noise_channels(plans, plan.sources);
+  std::map<long, int> unreverberated_noise_channels;  // of arrays: check_array_noise_channels
+  if (plan.split_channels || plan.multi_channel_output)
+    unreverberated_noise_channels = check_array_noise_channels(plans, plan.sources);
   const auto& [first_id, first_rx] = *input.wav_scp.begin();
   const DirSampleRate dir_rate(plan.sample_rate_hz, first_id, first_rx, in_dir + "/wav.scp: recording '" + first_id + "'");
 
@@ -580,7 +574,7 @@ ReverberateDataSummary reverberate_data_dir(const std::string& in_dir, const std
   DataDir output;
   std::unique_ptr<OwnedOutputDir> wav_dir;
   if (options.write_wavs.empty()) {
-    output.wav_scp = pipe_wav_scp(plans, plan, in_dir, input, dir_rate, options);
+    output.wav_scp = pipe_wav_scp(plans, plan, in_dir, input, dir_rate, options, unreverberated_noise_channels);
   } else {
     if (path_is_inside(out_dir, absolute_path(options.write_wavs)))
       throw Error("--write-wavs directory " + options.write_wavs + " must not contain the output data dir");

@@ -62,10 +62,9 @@ struct GanSettings {
   // Band-gain generators: weight of the same L2 penalty on the log gains a generator predicts
   // after the direct sound (and at it below 250 Hz: gan::identity_held_gains) for RIRs of its own
   // domain (G_SR's for real RIRs, G_RS's for synthetic ones: the identity passes), which should
-  // pass unchanged. A gain identity in the gains' own
-  // units (nepers), where a quiet band's late level counts as much as its early one; the waveform
-  // identity L1 hardly sees a tail 40 dB down (a departure; the paper has only the waveform
-  // identity). Issue 34: without it the decay kind's translators changed the 500-1000 Hz decay
+  // pass unchanged. A gain identity in the gains' own units (nepers), where a quiet band's late
+  // level counts as much as its early one; the waveform identity L1 hardly sees a tail 40 dB down
+  // (a departure; the paper has only the waveform identity). Issue 34: without it the decay kind's translators changed the 500-1000 Hz decay
   // with the 2-8 kHz one. 0 = none, the default; files without the key: 0.
   double identity_gain_weight = 0.0;
   // Residual and band-gain generators: weight of an L2 penalty on the waveform correction (its

@@ -14,7 +14,7 @@ std::string transducer_gain_key(int band) { return "g" + octave_band_label(kOcta
 std::vector<float> transducer_filter(const BandValues& gains_db, double sample_rate_hz) {
   // 64 ms of filter: enough for octave-smooth responses down to 62.5 Hz.
   const size_t taps = static_cast<size_t>(std::llround(0.064 * sample_rate_hz));
-  const size_t fft_size = next_fast_fft_size(8 * taps) + (next_fast_fft_size(8 * taps) % 2);
+  const size_t fft_size = next_fast_fft_size(8 * taps);  // even (a multiple of 8), as minimum_phase_fir needs
   std::vector<double> mag_db(fft_size / 2 + 1);
   for (size_t k = 0; k < mag_db.size(); ++k) mag_db[k] = interpolate_band_db(gains_db, k * sample_rate_hz / fft_size);
   return minimum_phase_fir(mag_db, fft_size, taps);
