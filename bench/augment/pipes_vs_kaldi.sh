@@ -18,6 +18,8 @@
 set -euo pipefail
 BIN=$(cd "${1:-$(dirname "$0")/../../build/bin}" && pwd)
 N=${2:-1000}
+source "$(dirname "$0")/../peers/common.sh"  # machine_line
+machine_line
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/tsrir_pipes_vs_kaldi.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
 cd "$WORK"

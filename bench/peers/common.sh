@@ -50,4 +50,14 @@ time_cmd() {
   /usr/bin/time -f "%e %U %S" -o "$f" "$@" >/dev/null 2>&1 || { echo "command failed: $*" >&2; rm -f "$f"; return 1; }
   awk '{ printf "%s %.6f\n", $1, $2 + $3 }' "$f"; rm -f "$f"
 }
+# "<wall_s> <cpu_s>": the medians of REPS runs of a command, OUT_DIR (its output) removed before each.
+time_cmd_median() {
+  local reps=$1 out=$2 walls=() cpus=() w c; shift 2
+  for ((k = 0; k < reps; k++)); do
+    rm -rf "$out"; read -r w c < <(time_cmd "$@"); walls+=("$w"); cpus+=("$c")
+  done
+  echo "$(median "${walls[@]}") $(median "${cpus[@]}")"
+}
+# The median of its numeric arguments (the mean of the middle two for an even count).
+median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { printf "%.6g", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a == "" || b == "" || a <= 0) print "-"; else printf "%.1fx\n", b / a }'; }

@@ -18,7 +18,8 @@ if [ "$q" = quick ]; then
   run sim_speed "$here/sim_speed.sh" 50 1 1
   run array_speed "$here/array_speed.sh" 50 1
   run metrics_speed "$here/metrics_speed.sh" 50
-  run reverb_speed "$here/reverb_speed.sh" 5 10
+  run reverb_speed "$here/reverb_speed.sh" 20 10
+  run pipes_vs_kaldi "$here/../augment/pipes_vs_kaldi.sh" "$TSRIR_BIN" 100
   run datadir_speed "$here/datadir_speed.sh" 10 10
   run band_accuracy "$here/band_accuracy.sh" 2
 else
@@ -26,6 +27,7 @@ else
   run array_speed "$here/array_speed.sh"
   run metrics_speed "$here/metrics_speed.sh"
   run reverb_speed "$here/reverb_speed.sh"
+  run pipes_vs_kaldi "$here/../augment/pipes_vs_kaldi.sh" "$TSRIR_BIN" 1000
   run datadir_speed "$here/datadir_speed.sh"
   run band_accuracy "$here/band_accuracy.sh"
 fi

@@ -1,9 +1,10 @@
 #!/bin/bash
 # rir-simulate vs pyroomacoustics (image sources only; hybrid ISM + ray tracing) vs RIR-Generator,
 # same rooms, same absorption, 16 kHz (issue 20). One core, then all cores (nproc).
-#   bench/peers/sim_speed.sh [N tsrir RIRs per room (200)] [pra reps (5)] [RIR-Generator reps (1)]
+#   bench/peers/sim_speed.sh [N tsrir RIRs per room (1000)] [pra reps (5)] [RIR-Generator reps (1)] [tsrir reps (3)]
 # tsrir: rir-simulate end to end (process start, 1.0 s RIR, float WAV + lists written), CPU time
-#   (user+sys) / N; peers: median time of the simulation call in their own process (imports and
+#   (user+sys) / N, the median of `tsrir reps` runs (1000 RIRs keep the process timer's 10 ms tick
+#   near 2 % of a run); peers: median time of the simulation call in their own process (imports and
 #   file writing excluded), so the comparison leans in the peers' favour.
 # "x" columns = peer time / tsrir time (how many times faster tsrir is).
 # pyroomacoustics sets its own RIR length (ISM: up to max_order; hybrid: until the ray energy
@@ -14,7 +15,7 @@
 #   wall per RIR / nproc (neither peer parallelises one RIR over cores here: pra num_threads=1).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
-n=${1:-200}; pra_reps=${2:-5}; rg_reps=${3:-1}
+n=${1:-1000}; pra_reps=${2:-5}; rg_reps=${3:-1}; ours_reps=${4:-3}
 need_tsrir rir-simulate
 P=$(nproc)
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -28,8 +29,8 @@ for room in $(room_names); do
   "$PRA_PYTHON" "$peers_dir/rooms.py" tsrir "$room" "$n" > "$tmp/$room.txt"
   for mode in 1 all; do
     t=1; [ "$mode" = all ] && t=$P
-    rm -rf "$tmp/o"; read -r w c < <(time_cmd "$TSRIR_BIN/rir-simulate" --length=1.0 --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
-    rm -rf "$tmp/o"; read -r wi ci < <(time_cmd "$TSRIR_BIN/rir-simulate" --model=ism --length=1.0 --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
+    read -r w c < <(time_cmd_median "$ours_reps" "$tmp/o" "$TSRIR_BIN/rir-simulate" --length=1.0 --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
+    read -r wi ci < <(time_cmd_median "$ours_reps" "$tmp/o" "$TSRIR_BIN/rir-simulate" --model=ism --length=1.0 --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
     if [ "$mode" = 1 ]; then ours=$(awk -v c="$c" -v n="$n" 'BEGIN{printf "%.5f", c/n}'); oursi=$(awk -v c="$ci" -v n="$n" 'BEGIN{printf "%.5f", c/n}')
     else ours=$(awk -v c="$w" -v n="$n" 'BEGIN{printf "%.5f", c/n}'); oursi=$(awk -v c="$wi" -v n="$n" 'BEGIN{printf "%.5f", c/n}'); fi
     cols=()
@@ -59,7 +60,7 @@ for room in $(room_names); do
       else cols+=(absent -); fi
     done
     if have_pra; then
-      rm -rf "$tmp/o"; read -r w c < <(time_cmd "$TSRIR_BIN/rir-simulate" --length="$hybrid_len" --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
+      read -r w c < <(time_cmd_median "$ours_reps" "$tmp/o" "$TSRIR_BIN/rir-simulate" --length="$hybrid_len" --format=float --num-threads=$t "$tmp/$room.txt" "$tmp/o")
       same=$(awk -v c="$([ "$mode" = 1 ] && echo "$c" || echo "$w")" -v n="$n" 'BEGIN{printf "%.5f", c/n}')
       cols+=("$same ($hybrid_len s)" "$(ratio "$same" "$hybrid_v")")
     else cols+=(absent -); fi

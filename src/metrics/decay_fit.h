@@ -2,6 +2,8 @@
 // squared samples, evaluation ranges found on the monotone curve, least squares in dB over time.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace tsrir {
@@ -40,7 +42,34 @@ struct DecayRangeDb {
 void fit_decay_ranges(const double* edc, const double* edc_db, size_t usable_end, double reference,
                       double sample_rate_hz, const std::vector<DecayRangeDb>& ranges, std::vector<DecayFit>* fits);
 
-// 10*log10(x) for x > 0 in a form the compiler vectorises; absolute error below 1e-9 dB.
+// 10*log10(x) for x > 0 in a form the compiler vectorises; absolute error below 1e-9 dB. Each value
+// is normal_energy_to_db's, to the bit, whichever CPU clone runs (decay_fit.cc).
 void energy_to_db(const double* x, size_t n, double* db);
+
+// energy_to_db's arithmetic for one normal, finite x > 0: log via an exponent/mantissa split with
+// the mantissa in [sqrt(1/2), sqrt(2)) and the atanh series of the mantissa. Integer steps only
+// (64-bit add/shift/and, the 2^52 magic number for the exponent), no branches, so a loop of it
+// vectorises. Zeros, subnormals, infinities and NaN give garbage here (energy_to_db patches them).
+inline double normal_energy_to_db(double x) {
+  constexpr double kDbPerLn = 10.0 / 2.302585092994045684;
+  constexpr double kLn2 = 0.693147180559945309;
+  constexpr uint64_t kSqrtHalfBits = 0x3FE6A09E667F3BCDull;
+  constexpr uint64_t kMantissa = 0x000FFFFFFFFFFFFFull;
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  // t >> 52 = k + 1024 where x = m 2^k, m in [sqrt(1/2), sqrt(2)).
+  const uint64_t t = bits - kSqrtHalfBits + (1024ull << 52);
+  const uint64_t exp_bits = 0x4330000000000000ull | (t >> 52);
+  const uint64_t mant_bits = (t & kMantissa) + kSqrtHalfBits;
+  double e, m;
+  std::memcpy(&e, &exp_bits, sizeof e);
+  std::memcpy(&m, &mant_bits, sizeof m);
+  e -= 4503599627370496.0 + 1024.0;
+  const double r = (m - 1.0) / (m + 1.0);
+  const double r2 = r * r;
+  const double series =
+      1.0 + r2 * (1.0 / 3 + r2 * (1.0 / 5 + r2 * (1.0 / 7 + r2 * (1.0 / 9 + r2 * (1.0 / 11 + r2 * (1.0 / 13 + r2 / 15))))));
+  return kDbPerLn * (e * kLn2 + 2.0 * r * series);
+}
 
 }  // namespace tsrir
