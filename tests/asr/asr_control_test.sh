@@ -18,8 +18,11 @@
 # cannot cancel (CI, 2026-11-27: seed 1's real model 9.35 % against 7.17 % for its control, still
 # 8.83 % after 45 epochs; the other four seeds +5.9 to +8.9 points): with five seeds that one run
 # left p = 0.027, with eight one such run still leaves p ~ 0.001.
-# Passes when egs/.../local/asr/table2.py's dose check passes: the control's mean CER is above the
-# real arm's and a one-sided paired t-test over the seeds gives p < 0.01 (table2.py --require-dose).
+# A seed whose model did not converge in either arm (last training loss > 3x its arm's median) is
+# left out with its pair (below; a 2-core Intel Xeon, 2026-11-28: seed 1's real model at 15 % CER).
+# Passes when at least six pairs are left and egs/.../local/asr/table2.py's dose check passes on
+# them: the control's mean CER is above the real arm's and a one-sided paired t-test over the seeds
+# gives p < 0.01 (table2.py --require-dose).
 # Calibrated on seeds the test does not use (docs/results/downstream.md, "The control in CI").
 # Env: TSRIR_BIN, TSRIR_TEST_RIRS; ASR_CONTROL_NULL=1 makes the "control" arm with the real RIRs
 # too, reverberated with another random draw (same seeds): the test must then FAIL.
@@ -67,7 +70,29 @@ for k in $SEEDS; do
   wait $p1 || { echo "FAIL: training the real arm, seed $k" >&2; exit 1; }
   wait $p2 || { echo "FAIL: training the control arm, seed $k" >&2; exit 1; }
 done
-python3 "$repo/egs/librispeech_farfield/local/asr/table2.py" --sets "real ctl_t60x0.33" --seeds "$SEEDS" --baseline real \
+# A run that did not converge (its last epoch's training loss above three times its arm's median)
+# says nothing about its RIRs: its seed's pair is left out, whichever arm it is in, on the training
+# loss alone (the test set is not looked at). Calibrated on seeds 61-68 (2-core Intel Xeon, control
+# and null draws, docs/results/downstream.md): converged runs 0.67-1.88x their arm's median, the one
+# that was not 4.06x (CER 8-15 % where the others give 1-4 %). Fewer than six pairs left is a
+# failure of the instrument.
+last_loss() { sed -n 's/.*last epoch loss \([0-9.eE+-]*\).*/\1/p' "$1.log" | tail -n 1; }
+kept=$(for k in $SEEDS; do echo "$k $(last_loss "$tmp/exp/real_seed$k") $(last_loss "$tmp/exp/ctl_t60x0.33_seed$k")"; done |
+  python3 -c '
+import statistics, sys
+rows = [l.split() for l in sys.stdin]
+med = [statistics.median(float(r[c]) for r in rows) for c in (1, 2)]
+kept = []
+for r in rows:
+    ratio = [float(r[c]) / med[c - 1] for c in (1, 2)]
+    ok = max(ratio) <= 3.0
+    print("seed %s: last epoch loss real %s (x%.2f of its arm'"'"'s median), control %s (x%.2f)%s"
+          % (r[0], r[1], ratio[0], r[2], ratio[1], "" if ok else ": did not converge, pair left out"), file=sys.stderr)
+    kept += [r[0]] if ok else []
+print(" ".join(kept))')
+echo "pairs kept: $(wc -w <<<"$kept") of $(wc -w <<<"$SEEDS") ($kept)"
+[ "$(wc -w <<<"$kept")" -ge 6 ] || { echo "FAIL: fewer than six seeds trained to convergence in both arms" >&2; exit 1; }
+python3 "$repo/egs/librispeech_farfield/local/asr/table2.py" --sets "real ctl_t60x0.33" --seeds "$kept" --baseline real \
   --tests test --titles "digits, held-out R3VIVAL positions" --dose "real ctl_t60x0.33" --alpha 0.01 --require-dose "$tmp/exp"
 rc=$?
 echo "($((SECONDS - start)) s)"
