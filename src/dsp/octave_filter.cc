@@ -196,84 +196,61 @@ void bandpass_lanes(const float* x, size_t n, bool time_reversed, size_t ns, con
   }
 }
 
-// Eight lanes (two vectors of four) time-reversed, each output squared and summed from the end as
-// it is made. Per lane the arithmetic is bandpass_lanes' and then a square and an add, in the
-// order a band-by-band loop does them, so the values are the same to the bit; the two groups of
-// four overlap their recursions' latency. The squares go out as whole vectors, sample-major
-// (energy[8 i + lane]); the sums band by band, as the decay analysis reads them. NS > 0 fixes
-// the section count at compile time (the state then stays in registers); NS = 0 takes `ns`.
-template <size_t NS>
+// Eight lanes time-reversed, each output squared and summed from the end as it is made, as G = 8 / L
+// vectors V of L lanes (two of four, or one of eight). Per lane the arithmetic is bandpass_lanes'
+// and then a square and an add, in the order a band-by-band loop does them, so the values are the
+// same to the bit whatever the vector width; two groups of four overlap their recursions' latency.
+// The squares go out as whole vectors, sample-major (energy[8 i + lane]); the sums band by band, as
+// the decay analysis reads them. NS > 0 fixes the section count at compile time (the state then
+// stays in registers); NS = 0 takes `ns`.
+template <typename V, size_t NS>
 __attribute__((always_inline)) inline void energy_lanes_body(const float* x, size_t n, size_t ns,
                                                              const double* a1_coef, const double* a2_coef,
                                                              const double* gain_coef, double* energy,
-                                                             double* const* tail_rows, Lanes* peak) {
+                                                             double* const* tail_rows, double* peak) {
+  constexpr int L = sizeof(V) / sizeof(double), G = 8 / L;
   if (NS > 0) ns = NS;
-  Lanes z1[2][16], z2[2][16], a1[2][16], a2[2][16], gain[2], sum[2], top[2];
+  V z1[G][16], z2[G][16], a1[G][16], a2[G][16], gain[G], sum[G], top[G];
   double* tail[8];
   for (int l = 0; l < 8; ++l) tail[l] = tail_rows[l];
-  for (int g = 0; g < 2; ++g) {
+  for (int g = 0; g < G; ++g) {
     for (size_t s = 0; s < ns; ++s) {
-      const double* c1 = a1_coef + 8 * s + 4 * g;
-      const double* c2 = a2_coef + 8 * s + 4 * g;
-      z1[g][s] = Lanes{0, 0, 0, 0};
-      z2[g][s] = Lanes{0, 0, 0, 0};
-      a1[g][s] = Lanes{c1[0], c1[1], c1[2], c1[3]};
-      a2[g][s] = Lanes{c2[0], c2[1], c2[2], c2[3]};
+      z1[g][s] = V{};
+      z2[g][s] = V{};
+      std::memcpy(&a1[g][s], a1_coef + 8 * s + L * g, sizeof(V));
+      std::memcpy(&a2[g][s], a2_coef + 8 * s + L * g, sizeof(V));
     }
-    gain[g] = Lanes{gain_coef[4 * g], gain_coef[4 * g + 1], gain_coef[4 * g + 2], gain_coef[4 * g + 3]};
-    sum[g] = Lanes{0, 0, 0, 0};
-    top[g] = Lanes{0, 0, 0, 0};
+    std::memcpy(&gain[g], gain_coef + L * g, sizeof(V));
+    sum[g] = V{};
+    top[g] = V{};
   }
   for (size_t i = n; i-- > 0;) {
     const double in = x[i];
-    for (int g = 0; g < 2; ++g) {
-      Lanes v = {in, in, in, in};
+    for (int g = 0; g < G; ++g) {
+      V v;
+      for (int l = 0; l < L; ++l) v[l] = in;
       bandpass_cascade(&v, z1[g], z2[g], a1[g], a2[g], ns);
       v *= gain[g];
-      const Lanes e = v * v;
+      const V e = v * v;
       sum[g] += e;
       top[g] = top[g] < e ? e : top[g];
-      std::memcpy(energy + 8 * i + 4 * g, &e, sizeof e);
-      for (int l = 0; l < 4; ++l) tail[4 * g + l][i] = sum[g][l];
+      std::memcpy(energy + 8 * i + L * g, &e, sizeof e);
+      for (int l = 0; l < L; ++l) tail[L * g + l][i] = sum[g][l];
     }
   }
-  peak[0] = top[0];
-  peak[1] = top[1];
+  for (int g = 0; g < G; ++g) std::memcpy(peak + L * g, &top[g], sizeof(V));
 }
 
 #if TSRIR_HAVE_AVX512_TARGET
-// energy_lanes_body's eight lanes as one 512-bit vector, for CPUs with AVX-512F: half the vector
-// instructions of two groups of four. The same operations per lane in the same order, so the same
-// values to the bit (the target keeps AVX-512F's fused multiply-adds out: cpu_clones.h).
+// The eight lanes as one 512-bit vector, for CPUs with AVX-512F: half the vector instructions of two
+// groups of four, the same values (the target keeps AVX-512F's fused multiply-adds out: cpu_clones.h).
+// The octave bands' order only (3 sections); other orders take bandpass_energy_lanes.
 typedef double Lanes8 __attribute__((vector_size(64)));
 
 TSRIR_AVX512_TARGET void bandpass_energy_lanes8(const float* x, size_t n, const double* a1_coef,
-                                                               const double* a2_coef, const double* gain_coef,
-                                                               double* energy, double* const* tail_rows,
-                                                               double* peak) {
-  constexpr size_t kSections = 3;  // the octave bands' order; other orders take the four-lane body
-  Lanes8 z1[kSections], z2[kSections], a1[kSections], a2[kSections], gain, sum = {}, top = {};
-  for (size_t s = 0; s < kSections; ++s) {
-    z1[s] = Lanes8{};
-    z2[s] = Lanes8{};
-    std::memcpy(&a1[s], a1_coef + 8 * s, sizeof(Lanes8));
-    std::memcpy(&a2[s], a2_coef + 8 * s, sizeof(Lanes8));
-  }
-  std::memcpy(&gain, gain_coef, sizeof gain);
-  double* tail[8];
-  for (int l = 0; l < 8; ++l) tail[l] = tail_rows[l];
-  for (size_t i = n; i-- > 0;) {
-    const double in = x[i];
-    Lanes8 v = {in, in, in, in, in, in, in, in};
-    bandpass_cascade(&v, z1, z2, a1, a2, kSections);
-    v *= gain;
-    const Lanes8 e = v * v;
-    sum += e;
-    top = top < e ? e : top;
-    std::memcpy(energy + 8 * i, &e, sizeof e);
-    for (int l = 0; l < 8; ++l) tail[l][i] = sum[l];
-  }
-  std::memcpy(peak, &top, sizeof top);
+                                                const double* a2_coef, const double* gain_coef, double* energy,
+                                                double* const* tail, double* peak) {
+  energy_lanes_body<Lanes8, 3>(x, n, 3, a1_coef, a2_coef, gain_coef, energy, tail, peak);
 }
 #endif
 
@@ -281,13 +258,11 @@ TSRIR_AVX512_TARGET void bandpass_energy_lanes8(const float* x, size_t n, const 
 TSRIR_AVX2_CLONES
 void bandpass_energy_lanes(const float* x, size_t n, size_t ns, const double* a1_coef, const double* a2_coef,
                            const double* gain_coef, double* energy, double* const* tail, double* peak) {
-  Lanes top[2];
   if (ns == 3) {  // ANSI order 3, the octave bands' order
-    energy_lanes_body<3>(x, n, ns, a1_coef, a2_coef, gain_coef, energy, tail, top);
+    energy_lanes_body<Lanes, 3>(x, n, ns, a1_coef, a2_coef, gain_coef, energy, tail, peak);
   } else {
-    energy_lanes_body<0>(x, n, ns, a1_coef, a2_coef, gain_coef, energy, tail, top);
+    energy_lanes_body<Lanes, 0>(x, n, ns, a1_coef, a2_coef, gain_coef, energy, tail, peak);
   }
-  std::memcpy(peak, top, sizeof top);
 }
 
 }  // namespace
