@@ -89,6 +89,21 @@ bool int16_block_in_place(const float* in, size_t count, char* dst, long long* c
 #endif
 }
 
+// put_sample's float branch for a whole block: the samples' bytes as they are on a little-endian
+// host, false (the block to be redone by put_sample) when one is NaN or Inf or the host is not.
+bool float_block_in_place(const float* in, size_t count, char* dst) {
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+  int bad = 0;
+  for (size_t i = 0; i < count; ++i) bad |= !(std::fabs(in[i]) <= FLT_MAX);  // one branch-free pass
+  if (bad) return false;
+  std::memcpy(dst, in, count * sizeof(float));
+  return true;
+#else
+  (void)in, (void)count, (void)dst;
+  return false;
+#endif
+}
+
 constexpr uint16_t kWaveFormatPcm = 1;
 constexpr uint16_t kWaveFormatIeeeFloat = 3;
 
@@ -157,6 +172,7 @@ void append_wav_frames(const float* interleaved, size_t frames, int channels, Sa
     if (clipped) *clipped += clipped_here;
     return;
   }
+  if (is_float && float_block_in_place(interleaved, count, dst)) return;
   clipped_here = 0;
   for (size_t i = 0; i < count; ++i, dst += width) {
     if (!put_sample(dst, interleaved[i], is_float, &clipped_here)) {

@@ -118,12 +118,13 @@ size_t tail_start(const RenderContext& ctx) {
 std::vector<float> white_noise(Rng& rng, size_t n) {
   std::vector<float> noise(n);
   const double half_width = std::sqrt(3.0);
-  for (float& x : noise) x = static_cast<float>(rng.uniform(-half_width, half_width));
+  rng.fill_uniform(-half_width, half_width, noise.data(), n);
   return noise;
 }
 
 typedef double Doubles4 __attribute__((vector_size(32)));
 typedef float Floats4 __attribute__((vector_size(16)));
+typedef int Ints4 __attribute__((vector_size(16)));
 
 // The bands' envelopes advanced together, sample by sample: each band's recurrence is a chain of
 // dependent multiplications, and interleaving the bands' chains lets them overlap (the tail took
@@ -131,40 +132,71 @@ typedef float Floats4 __attribute__((vector_size(16)));
 // four; each lane's arithmetic is what a band-by-band loop does (IEEE operations, no FMA in either
 // clone), so the samples are the same.
 // TailEnvelopes::render's loops: the bands' envelopes as two vectors of four lanes; unused lanes
-// run with zeros into a scratch row (eight stores a sample, no test of the count).
+// run with zeros into a scratch row (no test of the count). Four samples at a time, the lanes are
+// transposed into each band's four consecutive samples, added to its row as one vector: one
+// addition per sample and band as before, without eight scalar stores a sample.
+struct TailLanes {
+  Doubles4 amp[2], step[2], spec[2], spec_step[2];
+
+  // One sample's eight band values: before the transition the scattered share sqrt(1 - specular).
+  template <bool kScatteredShare>
+  void sample(double w, Floats4 out[2]) {
+    const Doubles4 one = {1, 1, 1, 1};
+    for (int g = 0; g < 2; ++g) {
+      Doubles4 a = amp[g];
+      if (kScatteredShare) {
+        const Doubles4 rest = one - spec[g];
+        const Doubles4 sq = {std::sqrt(rest[0]), std::sqrt(rest[1]), std::sqrt(rest[2]), std::sqrt(rest[3])};
+        a = a * sq;
+        spec[g] *= spec_step[g];
+      }
+      out[g] = __builtin_convertvector(a * w, Floats4);
+      amp[g] *= step[g];
+    }
+  }
+
+  template <bool kScatteredShare>
+  void run(const float* white, size_t i, size_t end, float* const* rows) {
+    for (; i + 4 <= end; i += 4) {
+      Floats4 v[4][2];
+      for (int j = 0; j < 4; ++j) sample<kScatteredShare>(white[i + j], v[j]);
+      for (int g = 0; g < 2; ++g) add_transposed(v[0][g], v[1][g], v[2][g], v[3][g], rows + 4 * g, i);
+    }
+    for (; i < end; ++i) {
+      Floats4 v[2];
+      sample<kScatteredShare>(white[i], v);
+      for (int b = 0; b < 8; ++b) rows[b][i] += v[b / 4][b % 4];
+    }
+  }
+
+  // Samples i..i+3 as rows a..d (lanes: four bands) -> each band's four samples, added to rows[0..3].
+  static void add_transposed(Floats4 a, Floats4 b, Floats4 c, Floats4 d, float* const* rows, size_t i) {
+    const Ints4 lo = {0, 4, 1, 5}, hi = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
+    const Floats4 ab_lo = __builtin_shuffle(a, b, lo), ab_hi = __builtin_shuffle(a, b, hi);
+    const Floats4 cd_lo = __builtin_shuffle(c, d, lo), cd_hi = __builtin_shuffle(c, d, hi);
+    const Floats4 band[4] = {__builtin_shuffle(ab_lo, cd_lo, first), __builtin_shuffle(ab_lo, cd_lo, second),
+                             __builtin_shuffle(ab_hi, cd_hi, first), __builtin_shuffle(ab_hi, cd_hi, second)};
+    for (int k = 0; k < 4; ++k) {
+      Floats4 r;
+      std::memcpy(&r, rows[k] + i, sizeof r);
+      r += band[k];
+      std::memcpy(rows[k] + i, &r, sizeof r);
+    }
+  }
+};
+
 TSRIR_AVX2_CLONES
 void render_tail_lanes(const float* white, size_t first, size_t transition, size_t n,
                        const double* amp0, const double* amp_step0, const double* spec0,
                        const double* spec_step0, float* const* rows) {
-  Doubles4 amp[2], step[2], spec[2], spec_step[2];
-  std::memcpy(amp, amp0, sizeof amp);
-  std::memcpy(step, amp_step0, sizeof step);
-  std::memcpy(spec, spec0, sizeof spec);
-  std::memcpy(spec_step, spec_step0, sizeof spec_step);
-  const Doubles4 one = {1, 1, 1, 1};
-  float v[8];
-  size_t i = first;
-  for (; i < transition; ++i) {
-    const double w = white[i];
-    for (int g = 0; g < 2; ++g) {
-      const Doubles4 sq = {std::sqrt((one - spec[g])[0]), std::sqrt((one - spec[g])[1]),
-                           std::sqrt((one - spec[g])[2]), std::sqrt((one - spec[g])[3])};
-      const Floats4 f = __builtin_convertvector(amp[g] * sq * w, Floats4);
-      std::memcpy(v + 4 * g, &f, sizeof f);
-      amp[g] *= step[g];
-      spec[g] *= spec_step[g];
-    }
-    for (int b = 0; b < 8; ++b) rows[b][i] += v[b];
-  }
-  for (; i < n; ++i) {
-    const double w = white[i];
-    for (int g = 0; g < 2; ++g) {
-      const Floats4 f = __builtin_convertvector(amp[g] * w, Floats4);
-      std::memcpy(v + 4 * g, &f, sizeof f);
-      amp[g] *= step[g];
-    }
-    for (int b = 0; b < 8; ++b) rows[b][i] += v[b];
-  }
+  TailLanes lanes;
+  std::memcpy(lanes.amp, amp0, sizeof lanes.amp);
+  std::memcpy(lanes.step, amp_step0, sizeof lanes.step);
+  std::memcpy(lanes.spec, spec0, sizeof lanes.spec);
+  std::memcpy(lanes.spec_step, spec_step0, sizeof lanes.spec_step);
+  const size_t scattered_end = std::max(first, transition);
+  lanes.run<true>(white, first, scattered_end, rows);
+  lanes.run<false>(white, scattered_end, std::max(scattered_end, n), rows);
 }
 
 struct TailEnvelopes {

@@ -1,7 +1,9 @@
 #include "sim/image_sources.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 
 #include "util/cpu_clones.h"
 #include "util/error.h"
@@ -15,8 +17,8 @@ constexpr int kFractionSteps = 1024;     // timing quantised to 1/1024 sample
 
 // Windowed-sinc kernels tabulated per fractional offset: the table costs 64 KiB once and turns
 // per-image kernel evaluation (16 sin/cos) into a lookup.
-struct KernelTable {
-  float taps[kFractionSteps + 1][2 * kHalfTaps];
+struct alignas(64) KernelTable {
+  alignas(64) float taps[kFractionSteps + 1][2 * kHalfTaps];
   KernelTable() {
     for (int f = 0; f <= kFractionSteps; ++f) {
       const double frac = static_cast<double>(f) / kFractionSteps;
@@ -46,6 +48,15 @@ std::vector<AxisImage> axis_images(double length, double src, double centre, con
     r_low[b] = std::sqrt(1.0 - a_low[b]);
     r_high[b] = std::sqrt(1.0 - a_high[b]);
   }
+  // r^k per band for every hit count k an image of this axis can have (|n - q| <= n_max + 1): the
+  // std::pow values the per-image evaluation gave, looked up (pow was 3 % of a render's CPU time).
+  std::vector<BandValues> pow_low(static_cast<size_t>(n_max) + 2), pow_high(static_cast<size_t>(n_max) + 2);
+  for (size_t k = 0; k < pow_low.size(); ++k) {
+    for (int b = 0; b < kNumOctaveBands; ++b) {
+      pow_low[k][b] = std::pow(r_low[b], static_cast<int>(k));
+      pow_high[k][b] = std::pow(r_high[b], static_cast<int>(k));
+    }
+  }
   for (long n = -n_max; n <= n_max; ++n) {
     for (int q = 0; q <= 1; ++q) {
       // Image at 2nL + (1-2q) src: |n - q| reflections on the wall at 0, |n| on the wall at L.
@@ -60,7 +71,7 @@ std::vector<AxisImage> axis_images(double length, double src, double centre, con
       img.mirror = 1 - 2 * q;
       img.reflections = hits_low + hits_high;
       for (int b = 0; b < kNumOctaveBands; ++b) {
-        img.factor[b] = std::pow(r_low[b], hits_low) * std::pow(r_high[b], hits_high);
+        img.factor[b] = pow_low[hits_low][b] * pow_high[hits_high][b];
       }
       out.push_back(img);
     }
@@ -147,7 +158,9 @@ std::vector<ImageArrival> image_arrivals(const ImageLattice& lattice, const Room
         const double dz = z.position - room.mic_m[2];
         const double d_sq = dx * dx + dy * dy + dz * dz;
         if (d_sq >= reach_sq) continue;
-        ImageArrival arr;
+        // Filled in place: a local copied in afterwards was read back before its stores had
+        // landed (a store-forwarding stall that was half of this function's time).
+        ImageArrival& arr = out.emplace_back(ImageArrival::Unset{});
         arr.distance_m = std::sqrt(d_sq);
         arr.delay_s = arr.distance_m / c;
         arr.reflections = x.reflections + y.reflections + z.reflections;
@@ -162,7 +175,6 @@ std::vector<ImageArrival> image_arrivals(const ImageLattice& lattice, const Room
           const BandValues gains = pattern_gains(room, xyz, offset, arr.distance_m);
           for (int b = 0; b < kNumOctaveBands; ++b) arr.amplitude[b] *= gains[b];
         }
-        out.push_back(arr);
       }
     }
   }
@@ -180,33 +192,74 @@ double image_transition_time_s(const RoomSpec& room, double num_images) {
 }
 
 namespace {
-// out[k] += g * taps[k] for all 2 kHalfTaps taps: a fixed count the compiler turns into whole
-// vectors (eight floats in the AVX2 clone, no FMA there, so the sums are those of the scalar loop).
-TSRIR_AVX2_CLONES
-void add_scaled_taps(float g, const float* taps, float* out) {
-  for (int k = 0; k < 2 * kHalfTaps; ++k) out[k] += g * taps[k];
-}
-}  // namespace
 
-void add_fractional_impulse(double position, const BandValues& gain, BandSignals& bands) {
-  const KernelTable& table = kernel_table();
-  const long base = static_cast<long>(std::floor(position));
-  const int f = static_cast<int>(std::lround((position - base) * kFractionSteps));
-  const float* taps = table.taps[f];
-  const long n = static_cast<long>(bands.band[0].size());
-  const long first = base - kHalfTaps + 1;
-  const int k_begin = static_cast<int>(std::max(0L, -first));
-  const int k_end = static_cast<int>(std::min<long>(2 * kHalfTaps, n - first));
+typedef float Floats8 __attribute__((vector_size(32)));
+static_assert(2 * kHalfTaps == 16, "a kernel is two vectors of eight taps");
+
+// Where an arrival at `position` (samples) lands: its kernel's first sample and the table row of
+// the nearest 1/1024 sample, halves rounded up. That is std::lround's rounding, which costs a libm
+// call per image; the fraction `scaled - whole` is exact, so its comparison with 0.5 decides as
+// lround does.
+struct KernelPlace {
+  long first;
+  int row;
+};
+inline KernelPlace kernel_place(double position) {
+  const double base = std::floor(position);
+  const double scaled = (position - base) * kFractionSteps;
+  const double whole = std::floor(scaled);
+  return {static_cast<long>(base) - kHalfTaps + 1, static_cast<int>(whole) + (scaled - whole >= 0.5 ? 1 : 0)};
+}
+
+// rows[b][first + k] += gain[b] * taps[k] for the taps inside [0, n): one multiplication and one
+// addition per tap, in this order, in every clone (the avx2 target has no FMA), so the sums are
+// those of the scalar loop.
+inline void add_impulse_body(const KernelTable& table, double position, const double* gain, float* const* rows, long n) {
+  const KernelPlace at = kernel_place(position);
+  const float* taps = table.taps[at.row];
+  // The taps as two vectors of eight, loaded once for all bands (GCC vector types: whole vectors in
+  // every clone, and no store into a band can be taken to change a tap).
+  Floats8 tap_vec[2];
+  std::memcpy(tap_vec, __builtin_assume_aligned(taps, 64), sizeof tap_vec);  // rows are 64 bytes
+  const int k_begin = static_cast<int>(std::max(0L, -at.first));
+  const int k_end = static_cast<int>(std::min<long>(2 * kHalfTaps, n - at.first));
   for (int b = 0; b < kNumOctaveBands; ++b) {
     const float g = static_cast<float>(gain[b]);
     if (g == 0.0f) continue;
-    float* out = bands.band[b].data() + first;
-    if (k_begin == 0 && k_end == 2 * kHalfTaps) {
-      add_scaled_taps(g, taps, out);  // every tap inside the RIR: the usual case
+    float* out = rows[b] + at.first;
+    if (k_begin == 0 && k_end == 2 * kHalfTaps) {  // every tap inside: the usual case
+      for (int h = 0; h < 2; ++h) {
+        Floats8 o;
+        std::memcpy(&o, out + 8 * h, sizeof o);
+        o += g * tap_vec[h];
+        std::memcpy(out + 8 * h, &o, sizeof o);
+      }
     } else {
       for (int k = k_begin; k < k_end; ++k) out[k] += g * taps[k];
     }
   }
+}
+
+std::array<float*, kNumOctaveBands> band_rows(BandSignals& bands) {
+  std::array<float*, kNumOctaveBands> rows{};
+  for (int b = 0; b < kNumOctaveBands; ++b) rows[b] = bands.band[b].data();
+  return rows;
+}
+
+// Every arrival's impulse, in one function compiled per instruction set: dispatched once per
+// microphone rather than once per image and band (the per-call dispatch and a scalar copy of the
+// taps cost more than the additions themselves; issue 35's profile).
+TSRIR_AVX2_CLONES
+void add_arrival_impulses(const ImageArrival* arrivals, size_t count, double fs, float* const* rows, long n) {
+  const KernelTable& table = kernel_table();
+  for (size_t i = 0; i < count; ++i) add_impulse_body(table, arrivals[i].delay_s * fs, arrivals[i].amplitude.data(), rows, n);
+}
+
+}  // namespace
+
+void add_fractional_impulse(double position, const BandValues& gain, BandSignals& bands) {
+  const std::array<float*, kNumOctaveBands> rows = band_rows(bands);
+  add_impulse_body(kernel_table(), position, gain.data(), rows.data(), static_cast<long>(bands.band[0].size()));
 }
 
 ImageSourceComponent::ImageSourceComponent(ComponentParams& params)
@@ -258,8 +311,10 @@ void ImageSourceComponent::render_microphone(const RenderContext& ctx, const Ima
   const double fs = ctx.sample_rate_hz;
   const double window_start = 0.5 * t_tr;
   BandValues window_energy{};
-  for (const ImageArrival& arr : image_arrivals(lattice, room, t_tr)) {
-    add_fractional_impulse(arr.delay_s * fs, arr.amplitude, bands);
+  const std::vector<ImageArrival> arrivals = image_arrivals(lattice, room, t_tr);
+  const std::array<float*, kNumOctaveBands> rows = band_rows(bands);
+  add_arrival_impulses(arrivals.data(), arrivals.size(), fs, rows.data(), static_cast<long>(bands.band[0].size()));
+  for (const ImageArrival& arr : arrivals) {
     if (arr.delay_s >= window_start && arr.reflections > 0) {
       for (int b = 0; b < kNumOctaveBands; ++b) {
         window_energy[b] += arr.unscattered_amplitude[b] * arr.unscattered_amplitude[b];

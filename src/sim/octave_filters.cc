@@ -92,8 +92,8 @@ std::vector<float> combine_octave_bands(const BandSignals& bands, double sample_
       if (x != 0.0f) { silent = false; break; }
     }
     if (silent) continue;
+    // The padding after n stays zero: the forward transform leaves its input as it was.
     std::copy(bands.band[b].begin(), bands.band[b].end(), buffer.begin());
-    std::fill(buffer.begin() + n, buffer.end(), 0.0f);
     plan.fft->forward(buffer.data(), spectrum.data());
     const float* g = plan.gain[b].data();
     for (size_t k = plan.bin_begin[b]; k < plan.bin_end[b]; ++k) sum[k] += g[k] * spectrum[k];

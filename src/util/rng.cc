@@ -31,21 +31,33 @@ Rng Rng::for_item(uint64_t seed, std::string_view key) {
   return Rng(mixed);
 }
 
-// xoshiro256**: fast, 256-bit state, passes BigCrush.
-uint64_t Rng::next_u64() {
-  const uint64_t result = rotl(s_[1] * 5, 7) * 9;
-  const uint64_t t = s_[1] << 17;
-  s_[2] ^= s_[0];
-  s_[3] ^= s_[1];
-  s_[1] ^= s_[2];
-  s_[0] ^= s_[3];
-  s_[2] ^= t;
-  s_[3] = rotl(s_[3], 45);
+namespace {
+// xoshiro256**: fast, 256-bit state, passes BigCrush. A local function, which the compiler inlines
+// (a member of this position-independent library could be interposed, so it would not).
+inline uint64_t xoshiro_next(uint64_t* s) {
+  const uint64_t result = rotl(s[1] * 5, 7) * 9;
+  const uint64_t t = s[1] << 17;
+  s[2] ^= s[0];
+  s[3] ^= s[1];
+  s[1] ^= s[2];
+  s[0] ^= s[3];
+  s[2] ^= t;
+  s[3] = rotl(s[3], 45);
   return result;
 }
+inline double unit_interval(uint64_t bits) { return (bits >> 11) * 0x1.0p-53; }
+}  // namespace
 
-double Rng::uniform() { return (next_u64() >> 11) * 0x1.0p-53; }
+uint64_t Rng::next_u64() { return xoshiro_next(s_); }
+
+double Rng::uniform() { return unit_interval(next_u64()); }
 double Rng::uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+
+void Rng::fill_uniform(double lo, double hi, float* out, size_t n) {
+  uint64_t s[4] = {s_[0], s_[1], s_[2], s_[3]};  // in registers, not reloaded after every store
+  for (size_t i = 0; i < n; ++i) out[i] = static_cast<float>(lo + (hi - lo) * unit_interval(xoshiro_next(s)));
+  for (int k = 0; k < 4; ++k) s_[k] = s[k];
+}
 
 uint64_t Rng::below(uint64_t n) {
   if (n <= 1) return 0;

@@ -3,6 +3,7 @@
 // an item's draws never depend on thread count or processing order.
 #pragma once
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -20,6 +21,9 @@ class Rng {
   uint64_t next_u64();
   double uniform();                         // [0, 1)
   double uniform(double lo, double hi);     // [lo, hi)
+  // out[i] = float(uniform(lo, hi)) for i = 0..n-1: the same draws and values as that loop, without
+  // a call per draw (a diffuse tail draws one per sample).
+  void fill_uniform(double lo, double hi, float* out, size_t n);
   uint64_t below(uint64_t n);               // uniform integer in [0, n), unbiased
   double normal();                          // standard normal (Box-Muller, cached pair)
   double normal(double mean, double stddev);
