@@ -1,5 +1,6 @@
 #include "gan/gan_band_gain.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -72,11 +73,17 @@ KnotPosition knot_positions(const torch::Tensor& onset, int64_t length, double s
   return p;
 }
 
-torch::Tensor identity_held_gains(const torch::Tensor& log_gains) {
+torch::Tensor identity_held_gains(const torch::Tensor& log_gains, int direct_bands) {
   const int64_t knots = log_gains.size(2);
-  return torch::cat({log_gains.narrow(2, kDirectSoundKnots, knots - kDirectSoundKnots).flatten(1),
-                     log_gains.narrow(1, 0, kIdentityDirectBands).narrow(2, 0, kDirectSoundKnots).flatten(1)},
-                    1);
+  const torch::Tensor after = log_gains.narrow(2, kDirectSoundKnots, knots - kDirectSoundKnots).flatten(1);
+  if (direct_bands <= 0) return after;
+  return torch::cat({after, log_gains.narrow(1, 0, direct_bands).narrow(2, 0, kDirectSoundKnots).flatten(1)}, 1);
+}
+
+torch::Tensor direct_gains_above(const torch::Tensor& log_gains, int first_band) {
+  const int64_t bands = log_gains.size(1) - first_band;
+  if (bands <= 0) return torch::Tensor();
+  return log_gains.narrow(1, first_band, bands).narrow(2, 0, kDirectSoundKnots).flatten(1);
 }
 
 torch::Tensor interpolate_knots(const torch::Tensor& values, const KnotPosition& at) {
@@ -114,18 +121,22 @@ torch::Tensor BandGainImpl::knot_log_gains(const torch::Tensor& features) {
   return torch::cat({v.narrow(2, 0, 1), v}, 2);  // the direct-sound value at both of its knots
 }
 
-torch::Tensor BandGainImpl::band_signals(const torch::Tensor& input) {
-  const int64_t n = input.size(-1);
+torch::Tensor BandGainImpl::filtered(const torch::Tensor& x, int64_t first_band, int64_t bands) {
+  const int64_t n = x.size(-1);
   torch::Tensor responses = responses_;
   int64_t fft_length = fft_length_;
   if (n != kSliceLength) {  // other lengths (tests): responses for their own FFT length
     fft_length = n + kGuardSamples;
-    responses = band_gain_response_tensor(fft_length).to(input.device());
+    responses = band_gain_response_tensor(fft_length).to(x.device());
   }
   // float32: the CPU FFT has no bfloat16.
-  const torch::Tensor spectrum = torch::fft::rfft(input.to(torch::kFloat), fft_length, -1);  // [batch, 1, bins]
-  return torch::fft::irfft(spectrum * responses.to(torch::kFloat), fft_length, -1).narrow(-1, 0, n);
+  const torch::Tensor spectrum = torch::fft::rfft(x.to(torch::kFloat), fft_length, -1);  // [batch, 1, bins]
+  const torch::Tensor rows = responses.narrow(0, first_band, bands).to(torch::kFloat);
+  return torch::fft::irfft(spectrum * rows, fft_length, -1).narrow(-1, 0, n);
 }
+
+torch::Tensor BandGainImpl::band_signals(const torch::Tensor& input) { return filtered(input, 0, kBandGainBands); }
+
 
 torch::Tensor BandGainImpl::forward(const torch::Tensor& input, const torch::Tensor& features,
                                     const torch::Tensor& onset, torch::Tensor* log_gains) {

@@ -49,8 +49,6 @@ constexpr int kBandGainKnots = 11;
 constexpr double kKnotMs[kBandGainKnots] = {-1.0, 1.0, 3.0, 6.0, 12.0, 24.0, 48.0, 96.0, 192.0, 384.0, 768.0};
 // The direct-sound window's knots (the first two, one shared value); the rest follow it.
 constexpr int kDirectSoundKnots = 2;
-// The lowest bands whose direct-sound knots the gain identity holds too (band 0: below 250 Hz).
-constexpr int kIdentityDirectBands = 1;
 constexpr double kMaxGainDb = 24.0;
 
 // The band responses on the bins of a real FFT of `fft_length` at 16 kHz: [bands][bins], each >= 0,
@@ -71,11 +69,14 @@ torch::Tensor interpolate_knots(const torch::Tensor& values, const KnotPosition&
 
 // The log gains [rows, bands, knots] that the gain identity (--identity-gain-weight) holds, [rows, held]:
 // every band's knots after the direct sound, and the direct-sound knots of the lowest
-// kIdentityDirectBands bands. The other bands' direct sound is left to --gain-weight: held too,
-// the direct kind's translators moved the direct sound 0.25-0.50 of the gap on five seeds; not
-// held below 250 Hz, the decay kind's translators added a low-band part shared across RIRs
-// (lf_db 1.1-2.0 dB on two seeds; 0.14 and 0.33 with it held; bench/RESULTS.md).
-torch::Tensor identity_held_gains(const torch::Tensor& log_gains);
+// `direct_bands` bands (--identity-direct-bands). The other bands' direct sound is left to
+// --gain-weight: held too, the direct kind's translators moved the direct sound 0.25-0.50 of the
+// gap on five seeds; not held below 250 Hz, the decay kind's translators added a low-band part shared across RIRs (lf_db 1.1-2.0 dB on two seeds; 0.14 and
+// 0.33 with it held; bench/RESULTS.md).
+torch::Tensor identity_held_gains(const torch::Tensor& log_gains, int direct_bands);
+// The direct-sound log gains [rows, held] of the bands from `first_band` up: the ones
+// identity_held_gains(log_gains, first_band) leaves out (--identity-direct-weight's). Undefined if none.
+torch::Tensor direct_gains_above(const torch::Tensor& log_gains, int first_band);
 
 class BandGainImpl : public torch::nn::Module {
  public:
@@ -93,6 +94,8 @@ class BandGainImpl : public torch::nn::Module {
   torch::nn::Linear head{nullptr};
 
  private:
+  // `x` [batch, 1, n] through the band responses [rows, bins] of its own FFT length: [batch, rows, n].
+  torch::Tensor filtered(const torch::Tensor& x, int64_t first_band, int64_t bands);
   torch::Tensor responses_;  // [bands, bins] of the FFT length below, a buffer
   int64_t fft_length_ = 0;
 };

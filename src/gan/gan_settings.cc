@@ -20,7 +20,7 @@ namespace {
 const std::vector<std::string> kFileOrder = {
     "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
     "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
-    "identity_gain_weight", "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
+    "identity_gain_weight", "identity_direct_bands", "identity_direct_weight", "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
     "generator_update", "disc_augment", "disc_view", "precision", "warmup_steps", "real_list", "synthetic_list"};
 
 SettingsStyle file_style() {
@@ -45,7 +45,7 @@ SettingsFile every_key_file(GanSettings* settings) {
 SettingsFile bound_file(GanSettings* settings) {
   SettingsFile file = every_key_file(settings);
   GanSettings defaults;
-  file.OmitWhenDefault({"correction-weight", "disc-view", "identity-gain-weight"}, every_key_file(&defaults).values());
+  file.OmitWhenDefault({"correction-weight", "disc-view", "identity-gain-weight", "identity-direct-bands", "identity-direct-weight"}, every_key_file(&defaults).values());
   return file;
 }
 
@@ -84,6 +84,12 @@ void GanSettings::Register(OptionsItf* opts) {
                  "Band-gain generators: weight of the L2 penalty on the log gains (nepers^2) they predict after the direct "
                  "sound, and at it below 250 Hz, for RIRs of their own domain, which should pass unchanged (a gain identity; "
                  "0 = none; the paper has no such term)");
+  opts->Register("identity-direct-bands", &identity_direct_bands,
+                 "Band-gain generators: the gain identity also holds the direct-sound gain of this many of the lowest "
+                 "bands (1 = below 250 Hz; 0 = none)");
+  opts->Register("identity-direct-weight", &identity_direct_weight,
+                 "Band-gain generators: weight of the L2 penalty on the direct-sound log gains of the other bands for RIRs "
+                 "of their own domain (a weaker hold than the gain identity's; 0 = none; the paper has no such term)");
   opts->Register("correction-weight", &correction_weight,
                  "Residual and band-gain generators: weight of the L2 penalty on the waveform correction (its mean square "
                  "re the input's) in the generators' loss (0 = none; the paper has no such term)");
@@ -140,6 +146,9 @@ void check_gan_settings(const GanSettings& s, const std::string& file) {
   require(non_negative(s.gain_weight), "gain-weight", ">= 0");
   require(non_negative(s.identity_gain_weight), "identity-gain-weight", ">= 0");
   require(non_negative(s.correction_weight), "correction-weight", ">= 0");
+  // 11: the band-gain generator's bands (gan_band_gain.h; that header needs LibTorch).
+  require(s.identity_direct_bands >= 0 && s.identity_direct_bands <= 11, "identity-direct-bands", "in [0, 11]");
+  require(non_negative(s.identity_direct_weight), "identity-direct-weight", ">= 0");
   require(s.warmup_steps >= 0, "warmup-steps", ">= 0");
   require(s.correction_max_hz >= 0 && s.correction_max_hz < 8000, "correction-max-hz", "in (0, 8000) or 0");
 }

@@ -301,7 +301,8 @@ class Trainer {
     const int64_t b = r.size(0);
     torch::Tensor fake_r, fake_s;
     // The identity halves also when only the gain identity asks for them (their L1 then has weight 0).
-    const bool identity = m_.settings.identity_weight > 0 || m_.settings.identity_gain_weight > 0;
+    const bool identity = m_.settings.identity_weight > 0 || m_.settings.identity_gain_weight > 0 ||
+                          m_.settings.identity_direct_weight > 0;
     {
       torch::Tensor adv_r, adv_s, cyc_r, cyc_s, idt_r, idt_s, loss;
       {
@@ -366,7 +367,8 @@ class Trainer {
   // on the log gains (band-gain; their RMS in dB into *rms_db); on the `rows` from `identity_first`
   // (its identity rows: RIRs of its own domain, where the pass has them), --identity-gain-weight's
   // on the log gains gan::identity_held_gains() selects (the knots after the direct sound, and the
-  // direct sound below 250 Hz; why: its comment). Zero where there is none.
+  // direct sound of --identity-direct-bands bands; why: its comment) and --identity-direct-weight's
+  // on the other bands' direct sound. Zero where there is none.
   torch::Tensor generator_penalties(const gan::Generator& g, int64_t rows, int64_t identity_first, double* rms_db) const {
     torch::Tensor penalty;  // undefined until a term exists, so that it lives on the terms' device
     const auto add = [&penalty](const torch::Tensor& term) { penalty = penalty.defined() ? penalty + term : term; };
@@ -380,8 +382,14 @@ class Trainer {
       if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
       add(m_.settings.gain_weight * mean_square);
       if (m_.settings.identity_gain_weight > 0 && v.size(0) >= identity_first + rows) {
-        const torch::Tensor held = gan::identity_held_gains(v.narrow(0, identity_first, rows));
+        const torch::Tensor held =
+            gan::identity_held_gains(v.narrow(0, identity_first, rows), m_.settings.identity_direct_bands);
         add(m_.settings.identity_gain_weight * held.to(torch::kFloat).pow(2).mean());
+      }
+      if (m_.settings.identity_direct_weight > 0 && v.size(0) >= identity_first + rows) {
+        const torch::Tensor direct =
+            gan::direct_gains_above(v.narrow(0, identity_first, rows), m_.settings.identity_direct_bands);
+        if (direct.defined()) add(m_.settings.identity_direct_weight * direct.to(torch::kFloat).pow(2).mean());
       }
     }
     // None: a CPU zero, which adds to a loss on any device (a 0-dim tensor acts as a scalar).
@@ -540,7 +548,9 @@ GanSettings settings_to_store(const GanTrainOptions& o) {
   if (settings.generator == GanGenerator::kOriginal) settings.correction_max_hz = 0.0;
   // Only band-gain generators have gains to penalise; 0 otherwise, as in the settings of models
   // made before the option, so that those resume under today's defaults.
-  if (settings.generator != GanGenerator::kBandGain) settings.gain_weight = settings.identity_gain_weight = 0.0;
+  if (settings.generator != GanGenerator::kBandGain) {
+    settings.gain_weight = settings.identity_gain_weight = settings.identity_direct_weight = 0.0;
+  }
   // The original generator has no correction to penalise.
   if (settings.generator == GanGenerator::kOriginal) settings.correction_weight = 0.0;
   settings.real_list = absolute_path(o.real_list);

@@ -253,7 +253,8 @@ TEST(BandGain, TranslationForwardEqualsTrainingAndRowsAreIndependent) {
 TEST(BandGain, IdentityHoldsTheKnotsAfterTheDirectSoundAndTheLowBandsDirectSound) {
   const int64_t rows = 2, count = kBandGainBands * kBandGainKnots;
   const torch::Tensor gains = torch::arange(rows * count, torch::kFloat).reshape({rows, kBandGainBands, kBandGainKnots});
-  const torch::Tensor held = identity_held_gains(gains);
+  for (const int direct_bands : {1, 0, 3}) {
+  const torch::Tensor held = identity_held_gains(gains, direct_bands);
   ASSERT_EQ(held.dim(), 2);
   ASSERT_EQ(held.size(0), rows);
   for (int64_t r = 0; r < rows; ++r) {
@@ -263,11 +264,22 @@ TEST(BandGain, IdentityHoldsTheKnotsAfterTheDirectSoundAndTheLowBandsDirectSound
     EXPECT_EQ(found.size(), size_t(values.numel()));  // none twice
     for (int band = 0; band < kBandGainBands; ++band) {
       for (int knot = 0; knot < kBandGainKnots; ++knot) {
-        const bool want = knot >= kDirectSoundKnots || band < kIdentityDirectBands;
-        EXPECT_EQ(found.count(float(r * count + band * kBandGainKnots + knot)) == 1, want) << band << " " << knot;
+        const bool want = knot >= kDirectSoundKnots || band < direct_bands;
+        EXPECT_EQ(found.count(float(r * count + band * kBandGainKnots + knot)) == 1, want)
+            << band << " " << knot << " " << direct_bands;
       }
     }
+    // The rest of the direct sound is what direct_gains_above() selects: every knot once, in one of the two.
+    const torch::Tensor rest = direct_gains_above(gains, direct_bands);
+    ASSERT_TRUE(rest.defined());
+    const auto rest_values = rest[r].contiguous();
+    const float* w = rest_values.data_ptr<float>();
+    std::set<float> all(found);
+    for (int64_t i = 0; i < rest_values.numel(); ++i) EXPECT_TRUE(all.insert(w[i]).second) << w[i];
+    EXPECT_EQ(all.size(), size_t(count));
   }
-  EXPECT_EQ(kIdentityDirectBands, 1);  // below 250 Hz: kBandEdgesHz[0]
+  }
+  EXPECT_FALSE(direct_gains_above(gains, kBandGainBands).defined());
   EXPECT_EQ(kBandEdgesHz[0], 250.0);
 }
+

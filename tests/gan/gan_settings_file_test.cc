@@ -109,6 +109,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
   s.correction_weight = 0.5;  // written only away from its default (added after files were written)
   s.disc_view = GanDiscView::kWaveformEnvelope;  // likewise
   s.identity_gain_weight = 2;  // likewise
+  s.identity_direct_bands = 0, s.identity_direct_weight = 0.5;  // likewise
   const SettingsValues values = gan_settings_values(s);
   ASSERT_GE(recorder.names.size(), 19u);
   for (std::string name : recorder.names) {
@@ -121,6 +122,8 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.disc_learning_rate = 2e-7, s.disc_updates = 4, s.cycle_weight = 0.1, s.identity_weight = 1e300;
     s.gain_weight = 0.25, s.rmsprop_initial_ms = 1, s.correction_max_hz = 7999.5, s.warmup_steps = 1LL << 40;
     s.correction_weight = 0.125, s.identity_gain_weight = k % 2 ? 0.0 : 1.5;
+    s.identity_direct_bands = k % 2 ? 1 : 3;
+    s.identity_direct_weight = k % 2 ? 0.0 : 0.75;
     s.generator = kGanGeneratorNames[k].second;
     s.init = kGanInitNames[k % 2].second, s.decoder = kGanDecoderNames[k % 2].second;
     s.generator_activation = kGanActivationNames[k % 2].second;
@@ -141,6 +144,10 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_EQ(text.find("disc_view") != std::string::npos, s.disc_view != GanDiscView::kWaveform);
     EXPECT_EQ(back.identity_gain_weight, s.identity_gain_weight);
     EXPECT_EQ(text.find("identity_gain_weight") != std::string::npos, s.identity_gain_weight != 0.0);
+    EXPECT_EQ(back.identity_direct_bands, s.identity_direct_bands);
+    EXPECT_EQ(text.find("identity_direct_bands") != std::string::npos, s.identity_direct_bands != 1);
+    EXPECT_EQ(back.identity_direct_weight, s.identity_direct_weight);
+    EXPECT_EQ(text.find("identity_direct_weight") != std::string::npos, s.identity_direct_weight != 0.0);
     EXPECT_EQ(back.real_list, "a b/real.scp");
     EXPECT_EQ(back.synthetic_list, "");
   }
@@ -159,6 +166,8 @@ TEST(GanSettingsFile, ErrorsNameTheFileAndLine) {
   EXPECT_NE(error_of(head + "correction_max_hz 8000\n").find("correction_max_hz"), std::string::npos);
   EXPECT_NE(error_of(head + "warmup_steps -1\n").find("warmup_steps"), std::string::npos);
   EXPECT_NE(error_of(head + "identity_gain_weight -1\n").find("identity_gain_weight"), std::string::npos);
+  EXPECT_NE(error_of(head + "identity_direct_bands 12\n").find("identity_direct_bands"), std::string::npos);
+  EXPECT_NE(error_of(head + "identity_direct_weight -1\n").find("identity_direct_weight"), std::string::npos);
   EXPECT_NE(error_of(head + "slice_length 8192\n").find("unsupported"), std::string::npos);
   EXPECT_EQ(error_of(kFirstFormatFile), "");
 }
