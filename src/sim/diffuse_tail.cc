@@ -169,13 +169,22 @@ struct TailLanes {
     }
   }
 
+  // Lanes i0..i3 of the eight of x then y (GCC >= 12 and Clang spell it __builtin_shufflevector).
+  template <int i0, int i1, int i2, int i3>
+  static Floats4 pick(Floats4 x, Floats4 y) {
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 12)
+    return __builtin_shufflevector(x, y, i0, i1, i2, i3);
+#else
+    return __builtin_shuffle(x, y, Ints4{i0, i1, i2, i3});
+#endif
+  }
+
   // Samples i..i+3 as rows a..d (lanes: four bands) -> each band's four samples, added to rows[0..3].
   static void add_transposed(Floats4 a, Floats4 b, Floats4 c, Floats4 d, float* const* rows, size_t i) {
-    const Ints4 lo = {0, 4, 1, 5}, hi = {2, 6, 3, 7}, first = {0, 1, 4, 5}, second = {2, 3, 6, 7};
-    const Floats4 ab_lo = __builtin_shuffle(a, b, lo), ab_hi = __builtin_shuffle(a, b, hi);
-    const Floats4 cd_lo = __builtin_shuffle(c, d, lo), cd_hi = __builtin_shuffle(c, d, hi);
-    const Floats4 band[4] = {__builtin_shuffle(ab_lo, cd_lo, first), __builtin_shuffle(ab_lo, cd_lo, second),
-                             __builtin_shuffle(ab_hi, cd_hi, first), __builtin_shuffle(ab_hi, cd_hi, second)};
+    const Floats4 ab_lo = pick<0, 4, 1, 5>(a, b), ab_hi = pick<2, 6, 3, 7>(a, b);
+    const Floats4 cd_lo = pick<0, 4, 1, 5>(c, d), cd_hi = pick<2, 6, 3, 7>(c, d);
+    const Floats4 band[4] = {pick<0, 1, 4, 5>(ab_lo, cd_lo), pick<2, 3, 6, 7>(ab_lo, cd_lo),
+                             pick<0, 1, 4, 5>(ab_hi, cd_hi), pick<2, 3, 6, 7>(ab_hi, cd_hi)};
     for (int k = 0; k < 4; ++k) {
       Floats4 r;
       std::memcpy(&r, rows[k] + i, sizeof r);
