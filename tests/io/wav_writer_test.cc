@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include "io/audio_io.h"
@@ -186,6 +187,36 @@ TEST(WavWriterRounding, Int16IsNearbyintThenClip) {
     ASSERT_EQ(got, want) << "sample " << v[i];
   }
   EXPECT_EQ(clipped, want_clipped);
+}
+
+// Float samples: the block path writes each sample's IEEE bytes, little-endian, as the per-sample
+// path does (assembled here byte by byte from the bit pattern); a NaN or Inf hands the block back to
+// the per-sample path, which names its frame and keeps the samples before it.
+TEST(WavWriterRounding, FloatBlockIsTheSamplesBytesAndNonFiniteNamesItsFrame) {
+  std::vector<float> v(64);
+  for (size_t i = 0; i < v.size(); ++i) v[i] = std::ldexp(static_cast<float>(i) - 31.5f, -7) + 1e-30f;
+  v[3] = -0.0f, v[4] = std::numeric_limits<float>::denorm_min(), v[5] = std::numeric_limits<float>::max();
+  std::vector<char> bytes = {'x'};
+  append_wav_frames(v.data(), v.size(), 1, SampleFormat::kFloat32, 0, &bytes, nullptr);
+  ASSERT_EQ(bytes.size(), 1u + 4 * v.size());
+  for (size_t i = 0; i < v.size(); ++i) {
+    uint32_t u;
+    std::memcpy(&u, &v[i], 4);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(static_cast<unsigned char>(bytes[1 + 4 * i + k]), (u >> (8 * k)) & 0xff) << i;
+  }
+  for (float bad : {std::nanf(""), INFINITY, -INFINITY}) {
+    std::vector<float> w = v;
+    w[41] = bad;
+    std::vector<char> out;
+    try {
+      append_wav_frames(w.data(), w.size(), 1, SampleFormat::kFloat32, 100, &out, nullptr);
+      FAIL() << "no error for " << bad;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("NaN or Inf sample at frame 141"), std::string::npos) << e.what();
+    }
+    ASSERT_EQ(out.size(), 4u * 41);
+    EXPECT_EQ(std::memcmp(out.data(), bytes.data() + 1, out.size()), 0);
+  }
 }
 
 // A NaN or Inf sample is an error naming its frame, and the bytes appended before it stay, as

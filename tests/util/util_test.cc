@@ -2,8 +2,10 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "util/error.h"
 #include "util/json.h"
@@ -45,6 +47,18 @@ TEST(Rng, DeterministicAndItemStreamsIndependentOfOrder) {
   double v1 = x1.uniform(), v2 = x2.uniform();
   EXPECT_EQ(v1, x1b.uniform());
   EXPECT_NE(v1, v2);
+}
+
+// fill_uniform is the loop of uniform(lo, hi) draws to the bit, and leaves the stream where that
+// loop would (the diffuse tail's noise, and with it every simulated RIR, depends on both).
+TEST(Rng, FillUniformIsTheLoopOfDraws) {
+  Rng loop = Rng::for_item(5, "tail"), block = Rng::for_item(5, "tail");
+  const double half_width = std::sqrt(3.0);
+  std::vector<float> want(1001), got(1001);
+  for (float& x : want) x = static_cast<float>(loop.uniform(-half_width, half_width));
+  block.fill_uniform(-half_width, half_width, got.data(), got.size());
+  for (size_t i = 0; i < want.size(); ++i) ASSERT_EQ(std::memcmp(&want[i], &got[i], sizeof(float)), 0) << i;
+  EXPECT_EQ(loop.next_u64(), block.next_u64());
 }
 
 TEST(Rng, MomentsOfUniformAndNormal) {
