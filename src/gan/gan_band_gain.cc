@@ -1,6 +1,5 @@
 #include "gan/gan_band_gain.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -121,22 +120,18 @@ torch::Tensor BandGainImpl::knot_log_gains(const torch::Tensor& features) {
   return torch::cat({v.narrow(2, 0, 1), v}, 2);  // the direct-sound value at both of its knots
 }
 
-torch::Tensor BandGainImpl::filtered(const torch::Tensor& x, int64_t first_band, int64_t bands) {
-  const int64_t n = x.size(-1);
+torch::Tensor BandGainImpl::band_signals(const torch::Tensor& input) {
+  const int64_t n = input.size(-1);
   torch::Tensor responses = responses_;
   int64_t fft_length = fft_length_;
   if (n != kSliceLength) {  // other lengths (tests): responses for their own FFT length
     fft_length = n + kGuardSamples;
-    responses = band_gain_response_tensor(fft_length).to(x.device());
+    responses = band_gain_response_tensor(fft_length).to(input.device());
   }
   // float32: the CPU FFT has no bfloat16.
-  const torch::Tensor spectrum = torch::fft::rfft(x.to(torch::kFloat), fft_length, -1);  // [batch, 1, bins]
-  const torch::Tensor rows = responses.narrow(0, first_band, bands).to(torch::kFloat);
-  return torch::fft::irfft(spectrum * rows, fft_length, -1).narrow(-1, 0, n);
+  const torch::Tensor spectrum = torch::fft::rfft(input.to(torch::kFloat), fft_length, -1);  // [batch, 1, bins]
+  return torch::fft::irfft(spectrum * responses.to(torch::kFloat), fft_length, -1).narrow(-1, 0, n);
 }
-
-torch::Tensor BandGainImpl::band_signals(const torch::Tensor& input) { return filtered(input, 0, kBandGainBands); }
-
 
 torch::Tensor BandGainImpl::forward(const torch::Tensor& input, const torch::Tensor& features,
                                     const torch::Tensor& onset, torch::Tensor* log_gains) {

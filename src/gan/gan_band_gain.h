@@ -71,8 +71,8 @@ torch::Tensor interpolate_knots(const torch::Tensor& values, const KnotPosition&
 // every band's knots after the direct sound, and the direct-sound knots of the lowest
 // `direct_bands` bands (--identity-direct-bands). The other bands' direct sound is left to
 // --gain-weight: held too, the direct kind's translators moved the direct sound 0.25-0.50 of the
-// gap on five seeds; not held below 250 Hz, the decay kind's translators added a low-band part shared across RIRs (lf_db 1.1-2.0 dB on two seeds; 0.14 and
-// 0.33 with it held; bench/RESULTS.md).
+// gap on five seeds; not held below 250 Hz, the decay kind's translators added a low-band part
+// shared across RIRs (lf_db 1.1-2.0 dB on two seeds; 0.14 and 0.33 with it held; bench/RESULTS.md).
 torch::Tensor identity_held_gains(const torch::Tensor& log_gains, int direct_bands);
 // The direct-sound log gains [rows, held] of the bands from `first_band` up: the ones
 // identity_held_gains(log_gains, first_band) leaves out (--identity-direct-weight's). Undefined if none.
@@ -94,8 +94,6 @@ class BandGainImpl : public torch::nn::Module {
   torch::nn::Linear head{nullptr};
 
  private:
-  // `x` [batch, 1, n] through the band responses [rows, bins] of its own FFT length: [batch, rows, n].
-  torch::Tensor filtered(const torch::Tensor& x, int64_t first_band, int64_t bands);
   torch::Tensor responses_;  // [bands, bins] of the FFT length below, a buffer
   int64_t fft_length_ = 0;
 };

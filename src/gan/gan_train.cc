@@ -381,15 +381,17 @@ class Trainer {
       const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
       if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
       add(m_.settings.gain_weight * mean_square);
-      if (m_.settings.identity_gain_weight > 0 && v.size(0) >= identity_first + rows) {
-        const torch::Tensor held =
-            gan::identity_held_gains(v.narrow(0, identity_first, rows), m_.settings.identity_direct_bands);
-        add(m_.settings.identity_gain_weight * held.to(torch::kFloat).pow(2).mean());
-      }
-      if (m_.settings.identity_direct_weight > 0 && v.size(0) >= identity_first + rows) {
-        const torch::Tensor direct =
-            gan::direct_gains_above(v.narrow(0, identity_first, rows), m_.settings.identity_direct_bands);
-        if (direct.defined()) add(m_.settings.identity_direct_weight * direct.to(torch::kFloat).pow(2).mean());
+      if (v.size(0) >= identity_first + rows) {  // the pass has identity rows
+        const torch::Tensor own = v.narrow(0, identity_first, rows);
+        const int direct_bands = m_.settings.identity_direct_bands;
+        if (m_.settings.identity_gain_weight > 0) {
+          const torch::Tensor held = gan::identity_held_gains(own, direct_bands);
+          add(m_.settings.identity_gain_weight * held.to(torch::kFloat).pow(2).mean());
+        }
+        if (m_.settings.identity_direct_weight > 0) {
+          const torch::Tensor direct = gan::direct_gains_above(own, direct_bands);
+          if (direct.defined()) add(m_.settings.identity_direct_weight * direct.to(torch::kFloat).pow(2).mean());
+        }
       }
     }
     // None: a CPU zero, which adds to a loss on any device (a 0-dim tensor acts as a scalar).

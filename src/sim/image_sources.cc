@@ -37,6 +37,17 @@ const KernelTable& kernel_table() {
   return table;
 }
 
+// base[b]^k per band for k = 0..max_exponent: the std::pow values a per-image evaluation gives (so
+// outputs are unchanged), looked up instead of recomputed for every image and band (pow was an
+// eighth of a render's CPU time).
+std::vector<BandValues> band_powers(const BandValues& base, int max_exponent) {
+  std::vector<BandValues> table(static_cast<size_t>(max_exponent) + 1);
+  for (int k = 0; k <= max_exponent; ++k) {
+    for (int b = 0; b < kNumOctaveBands; ++b) table[k][b] = std::pow(base[b], k);
+  }
+  return table;
+}
+
 }  // namespace
 
 std::vector<AxisImage> axis_images(double length, double src, double centre, const BandValues& a_low,
@@ -48,15 +59,9 @@ std::vector<AxisImage> axis_images(double length, double src, double centre, con
     r_low[b] = std::sqrt(1.0 - a_low[b]);
     r_high[b] = std::sqrt(1.0 - a_high[b]);
   }
-  // r^k per band for every hit count k an image of this axis can have (|n - q| <= n_max + 1): the
-  // std::pow values the per-image evaluation gave, looked up (pow was 3 % of a render's CPU time).
-  std::vector<BandValues> pow_low(static_cast<size_t>(n_max) + 2), pow_high(static_cast<size_t>(n_max) + 2);
-  for (size_t k = 0; k < pow_low.size(); ++k) {
-    for (int b = 0; b < kNumOctaveBands; ++b) {
-      pow_low[k][b] = std::pow(r_low[b], static_cast<int>(k));
-      pow_high[k][b] = std::pow(r_high[b], static_cast<int>(k));
-    }
-  }
+  // For every hit count an image of this axis can have (|n - q| <= n_max + 1).
+  const std::vector<BandValues> pow_low = band_powers(r_low, static_cast<int>(n_max) + 1);
+  const std::vector<BandValues> pow_high = band_powers(r_high, static_cast<int>(n_max) + 1);
   for (long n = -n_max; n <= n_max; ++n) {
     for (int q = 0; q <= 1; ++q) {
       // Image at 2nL + (1-2q) src: |n - q| reflections on the wall at 0, |n| on the wall at L.
@@ -112,9 +117,7 @@ BandValues pattern_gains(const RoomSpec& room, const AxisImage* xyz[3], const do
   return gains;
 }
 
-// sqrt(1 - s)^k per band for every reflection count k the lattice holds: the same std::pow values
-// the per-image evaluation gave (so outputs are unchanged), looked up instead of recomputed for
-// every image and band (pow was an eighth of a render's CPU time).
+// sqrt(1 - s)^k per band for every reflection count k the lattice holds.
 std::vector<BandValues> scattering_loss_table(const RoomSpec& room, const ImageLattice& lattice) {
   int max_reflections = 0;
   for (const auto& axis : lattice.axes) {
@@ -122,12 +125,9 @@ std::vector<BandValues> scattering_loss_table(const RoomSpec& room, const ImageL
     for (const AxisImage& img : axis) axis_max = std::max(axis_max, img.reflections);
     max_reflections += axis_max;
   }
-  std::vector<BandValues> table(max_reflections + 1);
-  for (int b = 0; b < kNumOctaveBands; ++b) {
-    const double scatter_amp = std::sqrt(1.0 - room.scattering[b]);
-    for (int k = 0; k <= max_reflections; ++k) table[k][b] = std::pow(scatter_amp, k);
-  }
-  return table;
+  BandValues scatter_amp{};
+  for (int b = 0; b < kNumOctaveBands; ++b) scatter_amp[b] = std::sqrt(1.0 - room.scattering[b]);
+  return band_powers(scatter_amp, max_reflections);
 }
 
 }  // namespace
