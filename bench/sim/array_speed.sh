@@ -9,13 +9,9 @@ n=${2:-100}
 reps=${3:-3}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M UTC')"
-printf 'circular n=8 radius_m=0.0425\n' > "$tmp/circular8.txt"
-for i in $(seq 1 "$n"); do
-  x=$(awk -v i="$i" 'BEGIN { printf "%.3f", 3.0 + 2.5 * ((i * 37) % 100) / 100 }')
-  echo "p$i room=7,6,3 src=1.5,2,1.5 mic=$x,3.5,1.4 t60=0.6"
-done > "$tmp/one.txt"
-sed 's/ t60=/ array=circular8.txt t60=/' "$tmp/one.txt" > "$tmp/eight.txt"
+# shellcheck source=bench/sim/array_lists.sh
+source "$(dirname "$0")/array_lists.sh"
+write_array_lists "$tmp" "$n"
 # The smallest CPU time (user + sys) of `reps` runs, per source position, in ms.
 cpu_ms() {
   local best=""
