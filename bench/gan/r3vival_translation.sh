@@ -7,6 +7,7 @@
 # with rir-metrics, and writes docs/results/ts-rirgan-r3vival.md (Table 1 means and the per-RIR
 # input->output correlations).
 # Usage: bench/gan/r3vival_translation.sh [build-dir] [out-page] ["ts-rirgan-train options"]
+# R3VIVAL_KEEP=DIR keeps the work (model, GAS and translated test RIRs, metrics) in DIR, a new directory.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$here/build}
@@ -15,8 +16,10 @@ train_args=${3:---width=16 --batch-size=4 --steps=1000 --seed=1 --num-threads=2}
 r3=${R3VIVAL_DIR:-$here/../shared/data/rirs/r3vival}
 [[ -d $r3 ]] || { echo "$0: R3VIVAL absent ($r3); nothing measured" >&2; exit 2; }
 bin=$build/bin
+keep=${R3VIVAL_KEEP:-}
+[[ -z $keep || ! -e $keep ]] || { echo "$0: R3VIVAL_KEEP=$keep exists; give a new directory" >&2; exit 1; }
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+trap 'if [[ -n $keep ]]; then mv "$work" "$keep"; else rm -rf "$work"; fi' EXIT
 load0=$(cut -d' ' -f1-3 /proc/loadavg)
 date0=$(date -u +%Y-%m-%dT%H:%MZ)
 "$here/docs/results/make_r3vival_inputs.sh" "$r3" "$work/in"
@@ -45,7 +48,7 @@ for set in real_test gas_test; do "$bin/rir-metrics" --format=json "$work/$set.s
 cmd="bench/gan/r3vival_translation.sh ${1:-build}${2:+ $2}${3:+ \"$3\"}"
 python3 "$here/bench/gan/r3vival_table.py" "$work/real_test.json" "$work/gas_test.json" "$work/g_gas.json" \
   --command "$cmd" --train-args "$train_args" --train-s "$train_s" \
-  --machine "$(uname -n), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" \
+  --machine "$(uname -n), $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" \
   --date "$date0" --load "$load0 at start, $(cut -d' ' -f1-3 /proc/loadavg) at end" \
   --split "$(wc -l < "$work/train_positions") of $(cut -d' ' -f1 "$work/in/rir.scp" | position | sort -u | wc -l) source positions for training ($(wc -l < "$work/real_train.scp") real + $(wc -l < "$work/gas_train.scp") GAS RIRs), the other positions for test ($(wc -l < "$work/real_test.scp") + $(wc -l < "$work/gas_test.scp"))" \
   > "$page.tmp"
