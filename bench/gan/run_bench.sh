@@ -28,6 +28,14 @@ echo "# load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 # median of step_s over steps >= 2 of a loss log
 median_step() { awk -F, 'NR>2{print $NF}' "$1" | sort -g | awk '{a[NR]=$1} END{print (NR%2)?a[(NR+1)/2]:(a[NR/2]+a[NR/2+1])/2}'; }
 
+# A --precision=bfloat16 run that the program refuses on this CPU (its LibTorch sums bfloat16
+# products in bfloat16: src/gan/gan_bfloat16.h) becomes a row saying so; any other failure stops.
+refused_row() {
+  grep -q 'sums bfloat16 convolution products in bfloat16' "$2" || { cat "$2" >&2; exit 1; }
+  local cells=""; for ((i = 1; i < $3; ++i)); do cells+=" — |"; done
+  echo "| $1 | refused on this CPU (LibTorch sums bfloat16 in bfloat16) |$cells"
+}
+
 echo "| run | median wall s/step | CPU s/step (process) | peak RSS MB |"
 echo "|---|---|---|---|"
 export OPENBLAS_NUM_THREADS=1
@@ -45,9 +53,11 @@ for spec in "16 12 1 defaults float32" "16 12 $threads defaults float32" "16 12 
   [[ $prec == float32 ]] || m=${m}_$prec
   opts=()
   [[ $cfg == paper ]] && opts+=(--config="$here/conf/ts-rirgan-paper.conf")
-  /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$bin/ts-rirgan-train" "${opts[@]}" --real="$work/rir.scp" \
+  if ! /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$bin/ts-rirgan-train" "${opts[@]}" --real="$work/rir.scp" \
     --synthetic="$work/rir.scp" --width=$w --precision=$prec --batch-size=4 --steps=$s --num-threads=$t \
-    --checkpoint-every=100000 --progress-interval=60 "$m" 2> "$work/log"
+    --checkpoint-every=100000 --progress-interval=60 "$m" 2> "$work/log"; then
+    refused_row "train width $w ($cfg, $prec), batch 4, $t thread(s)" "$work/log" 3; continue
+  fi
   read -r wall user sys rss < "$work/time"
   cpu=$(awk -v u="$user" -v s="$sys" -v n="$s" 'BEGIN{printf "%.3f", (u+s)/n}')
   echo "| train width $w ($cfg, $prec), batch 4, $t thread(s), $s steps (CPU/step includes loading $n RIRs) | $(median_step "$m/loss_log.csv") | $cpu | $((rss / 1024)) |"
@@ -93,8 +103,11 @@ for spec in "paper float32 16" "paper float32 1" "paper bfloat16 16" "defaults f
   set -- $spec
   cfg=$1; prec=$2; b=$3
   out=$work/out_${cfg}_${prec}_$b
-  /usr/bin/time -f "%e %U %S %M" -o "$work/time_t" "$bin/gas-to-real" --model="$work/m64_t${threads}_$cfg" \
-    --batch-size=$b --precision=$prec --num-threads=$threads "$work/rir.scp" "$out" 2> "$work/log_t"
+  if ! /usr/bin/time -f "%e %U %S %M" -o "$work/time_t" "$bin/gas-to-real" --model="$work/m64_t${threads}_$cfg" \
+    --batch-size=$b --precision=$prec --num-threads=$threads "$work/rir.scp" "$out" 2> "$work/log_t"; then
+    refused_row "gas-to-real, model trained with the $cfg configuration, --precision=$prec --batch-size=$b" "$work/log_t" 3
+    continue
+  fi
   read -r wall user sys rss < "$work/time_t"
   rate=$(grep -o '[0-9.e+]* RIRs/s' "$work/log_t" | cut -d' ' -f1)
   echo "| gas-to-real, model trained with the $cfg configuration, --precision=$prec --batch-size=$b | $rate | $(awk -v u="$user" -v s="$sys" 'BEGIN{printf "%.1f", u+s}') | $((rss / 1024)) |"

@@ -71,8 +71,8 @@ void GanTranslateOptions::Register(OptionsItf* opts) {
   register_compute_device(opts, &device);
   CommonOptions(opts).threads(&num_threads, "LibTorch's CPU threads and reading");
   opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
-                  "bfloat16: faster on CPUs with AVX512-BF16/AMX (slower without), output within ~1% RMS "
-                  "of float32 (bench/RESULTS.md)");
+                  "bfloat16: faster on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32 "
+                  "(bench/RESULTS.md); refused where LibTorch sums bfloat16 products in bfloat16 (probed at start)");
 }
 
 }  // namespace tsrir

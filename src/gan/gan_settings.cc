@@ -96,7 +96,8 @@ void GanSettings::Register(OptionsItf* opts) {
   opts->Register("warmup-steps", &warmup_steps, "Ramp the learning rates linearly over the first N steps (0 = none, the paper)");
   opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
                   "Training arithmetic: bfloat16 = CPU autocast, bfloat16 convolutions with float32 weights, "
-                  "gradients and losses; faster only on CPUs with AVX512-BF16/AMX (bench/RESULTS.md)");
+                  "gradients and losses; faster only on CPUs with AVX512-BF16/AMX (bench/RESULTS.md); refused where "
+                  "LibTorch sums bfloat16 products in bfloat16 (probed at start)");
   opts->RegisterEnum("generator", &generator, kGanGeneratorNames,
                   "original (the paper: tanh output rebuilt through the bottleneck), residual (output = "
                   "input + a learned correction, zero before the input's direct sound) or band-gain (the residual's "

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "gan/gan_band_gain.h"
+#include "gan/gan_bfloat16.h"
 #include "gan/gan_input.h"
 #include "gan/gan_loss_plot.h"
 #include "gan/gan_networks.h"
@@ -510,6 +511,7 @@ void validate(const GanTrainOptions& o) {
   if (o.model.precision == GanPrecision::kBfloat16 && o.device != ComputeDevice::kCpu) {
     throw Error("--precision=bfloat16 is for --device=cpu");
   }
+  if (o.model.precision == GanPrecision::kBfloat16) require_float32_sums_for_bfloat16("ts-rirgan-train");
 }
 
 // Every stored setting must match, but the learning rates (a hand-made schedule), the lists (the

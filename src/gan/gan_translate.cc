@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "gan/gan_bfloat16.h"
 #include "gan/gan_input.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
@@ -78,6 +79,7 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
     throw Error("--keep-length must be 'input' or in [1, 16384], got " + std::to_string(o.keep_length));
   }
   const std::string network = o.direction == GanDirection::kSyntheticToReal ? "g_real" : "g_synthetic";
+  if (o.precision == GanPrecision::kBfloat16) require_float32_sums_for_bfloat16("gas-to-real");
   const torch::ScalarType dtype = o.precision == GanPrecision::kBfloat16 ? torch::kBFloat16 : torch::kFloat32;
   tune_memory_for_torch();
   set_openblas_threads(1);

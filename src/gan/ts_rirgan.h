@@ -76,7 +76,7 @@ struct GanTranslateOptions {
   int num_threads = 1;
   // float32, or bfloat16: weights and activations in bfloat16 with float32 accumulation
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
-  // (tests/gan/gan_networks_test.cc). Slower than float32 on CPUs without bfloat16 arithmetic.
+  // (tests/gan/gan_networks_test.cc). Refused where LibTorch sums in bfloat16 (gan_bfloat16.h).
   GanPrecision precision = GanPrecision::kFloat32;
 
   void Register(OptionsItf* opts);  // gan_options.cc; input list and out dir are positional
