@@ -11,6 +11,7 @@
 #include <torch/fft.h>
 
 #include "gan/gan_binwise_product.h"
+#include "gan/gan_weight_average.h"
 #include "io/atomic_output.h"
 #include "util/error.h"
 
@@ -33,11 +34,18 @@ struct NamedNetwork {
   TfRmsProp* optimizer;
 };
 
+// What a checkpoint holds: the four networks with their optimiser state, then the generators'
+// weight averages where the model keeps them (no optimiser).
 std::vector<NamedNetwork> networks_of(CycleGan& model) {
-  return {{"g_real", model.g_real.get(), &model.optimizers[0]},
-          {"g_synthetic", model.g_synthetic.get(), &model.optimizers[1]},
-          {"d_real", model.d_real.get(), &model.optimizers[2]},
-          {"d_synthetic", model.d_synthetic.get(), &model.optimizers[3]}};
+  std::vector<NamedNetwork> networks = {{"g_real", model.g_real.get(), &model.optimizers[0]},
+                                        {"g_synthetic", model.g_synthetic.get(), &model.optimizers[1]},
+                                        {"d_real", model.d_real.get(), &model.optimizers[2]},
+                                        {"d_synthetic", model.d_synthetic.get(), &model.optimizers[3]}};
+  if (model.g_real_average) {
+    networks.push_back({"g_real_average", model.g_real_average.get(), nullptr});
+    networks.push_back({"g_synthetic_average", model.g_synthetic_average.get(), nullptr});
+  }
+  return networks;
 }
 
 void open_archive(const std::string& path, torch::serialize::InputArchive& archive) {
@@ -421,6 +429,16 @@ CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
     m->to(device);
     optimizers.emplace_back(m->parameters(), s.learning_rate, 0.9, 1e-10, s.rmsprop_initial_ms);
   }
+  // Built last, so that the four networks draw the same initial weights with or without them
+  // (nothing after construction draws from torch's generator); their weights are overwritten.
+  if (s.generator_average_decay > 0) {
+    g_real_average = make_generator(s, init);
+    g_synthetic_average = make_generator(s, init);
+    for (auto [average, live] : {std::pair{g_real_average, g_real}, std::pair{g_synthetic_average, g_synthetic}}) {
+      average->to(device);
+      start_weight_average(*average, *live);
+    }
+  }
 }
 
 void set_torch_threads(int num_threads) {
@@ -448,6 +466,7 @@ void save_checkpoint(const std::string& path, const CycleGan& model, long long s
     for (const auto& item : net.module->named_parameters()) {
       archive.write(archive_key(net.name, item.key()), item.value().detach().cpu());
     }
+    if (!net.optimizer) continue;
     const auto& ms = net.optimizer->mean_square();
     for (size_t i = 0; i < ms.size(); ++i) {
       archive.write(archive_key(net.name + "__rms", std::to_string(i)), ms[i].cpu());
@@ -471,6 +490,7 @@ long long load_checkpoint(const std::string& path, CycleGan& model) {
     for (auto& item : net.module->named_parameters()) {
       read_into(archive, archive_key(net.name, item.key()), item.value(), path);
     }
+    if (!net.optimizer) continue;
     auto& ms = net.optimizer->mean_square();
     for (size_t i = 0; i < ms.size(); ++i) {
       read_into(archive, archive_key(net.name + "__rms", std::to_string(i)), ms[i], path);
@@ -485,14 +505,16 @@ GanSettings read_checkpoint_settings(const std::string& path) {
   return archive_settings(archive, path);
 }
 
-Generator load_generator(const std::string& path, const std::string& name, GanSettings* settings,
-                         long long* step) {
+Generator load_generator(const std::string& path, const std::string& name, GeneratorWeights weights,
+                         GanSettings* settings, long long* step) {
   torch::serialize::InputArchive archive;
   open_archive(path, archive);
   *settings = archive_settings(archive, path);
+  const bool average = weights == GeneratorWeights::kAverageWhereKept && settings->generator_average_decay > 0;
+  const std::string stored = average ? name + "_average" : name;
   Generator generator = make_generator(*settings, GanInit::kGlorot);
   for (auto& item : generator->named_parameters()) {
-    read_into(archive, archive_key(name, item.key()), item.value(), path);
+    read_into(archive, archive_key(stored, item.key()), item.value(), path);
   }
   *step = archive_step(archive, path);
   return generator;

@@ -185,6 +185,10 @@ struct CycleGan {
   Discriminator d_real{nullptr};
   Discriminator d_synthetic{nullptr};
   std::vector<TfRmsProp> optimizers;  // g_real, g_synthetic, d_real, d_synthetic
+  // settings.generator_average_decay > 0: the moving averages of g_real's and g_synthetic's
+  // weights (gan_weight_average.h), same architecture, no gradients; null otherwise.
+  Generator g_real_average{nullptr};
+  Generator g_synthetic_average{nullptr};
 };
 
 void set_torch_threads(int num_threads);
@@ -200,10 +204,13 @@ void save_checkpoint(const std::string& path, const CycleGan& model, long long s
 long long load_checkpoint(const std::string& path, CycleGan& model);
 // The settings stored in a checkpoint (Error if the file is not a TS-RIRGAN checkpoint).
 GanSettings read_checkpoint_settings(const std::string& path);
+// Which of a generator's stored weights translate: the last step's, or the moving average where
+// the model keeps one (GanSettings::generator_average_decay > 0; the last step's otherwise).
+enum class GeneratorWeights { kLast, kAverageWhereKept };
 // Builds one generator ("g_real" or "g_synthetic") from a checkpoint's settings and weights;
 // fills *settings and *step.
-Generator load_generator(const std::string& path, const std::string& name, GanSettings* settings,
-                         long long* step);
+Generator load_generator(const std::string& path, const std::string& name, GeneratorWeights weights,
+                         GanSettings* settings, long long* step);
 
 }  // namespace gan
 }  // namespace tsrir

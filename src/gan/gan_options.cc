@@ -73,6 +73,9 @@ void GanTranslateOptions::Register(OptionsItf* opts) {
   opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
                   "bfloat16: faster on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32 "
                   "(bench/RESULTS.md); refused where LibTorch sums bfloat16 products in bfloat16 (probed at start)");
+  opts->Register("use-last-weights", &use_last_weights,
+                 "Translate with the generator's last training step's weights, also where the model keeps their "
+                 "moving average (ts-rirgan-train --generator-average-decay), which is used otherwise");
 }
 
 }  // namespace tsrir

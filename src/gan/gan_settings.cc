@@ -21,7 +21,7 @@ const std::vector<std::string> kFileOrder = {
     "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
     "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
     "identity_gain_weight", "identity_direct_bands", "identity_direct_weight", "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
-    "generator_update", "disc_augment", "disc_view", "precision", "warmup_steps", "real_list", "synthetic_list"};
+    "generator_update", "disc_augment", "disc_view", "precision", "warmup_steps", "generator_average_decay", "real_list", "synthetic_list"};
 
 SettingsStyle file_style() {
   SettingsStyle style;
@@ -45,7 +45,7 @@ SettingsFile every_key_file(GanSettings* settings) {
 SettingsFile bound_file(GanSettings* settings) {
   SettingsFile file = every_key_file(settings);
   GanSettings defaults;
-  file.OmitWhenDefault({"correction-weight", "disc-view", "identity-gain-weight", "identity-direct-bands", "identity-direct-weight"}, every_key_file(&defaults).values());
+  file.OmitWhenDefault({"correction-weight", "disc-view", "identity-gain-weight", "identity-direct-bands", "identity-direct-weight", "generator-average-decay"}, every_key_file(&defaults).values());
   return file;
 }
 
@@ -94,6 +94,10 @@ void GanSettings::Register(OptionsItf* opts) {
                  "Residual and band-gain generators: weight of the L2 penalty on the waveform correction (its mean square "
                  "re the input's) in the generators' loss (0 = none; the paper has no such term)");
   opts->Register("warmup-steps", &warmup_steps, "Ramp the learning rates linearly over the first N steps (0 = none, the paper)");
+  opts->Register("generator-average-decay", &generator_average_decay,
+                 "Both generators keep an exponential moving average of their weights over the steps, step s weighing "
+                 "D^(t-s) at step t (debiased; 1/(1-D) steps' memory), which gas-to-real translates with; training is "
+                 "unchanged (0 = none, the paper)");
   opts->RegisterEnum("precision", &precision, kGanPrecisionNames,
                   "Training arithmetic: bfloat16 = CPU autocast, bfloat16 convolutions with float32 weights, "
                   "gradients and losses; faster only on CPUs with AVX512-BF16/AMX (bench/RESULTS.md); refused where "
@@ -151,6 +155,7 @@ void check_gan_settings(const GanSettings& s, const std::string& file) {
   require(s.identity_direct_bands >= 0 && s.identity_direct_bands <= 11, "identity-direct-bands", "in [0, 11]");
   require(non_negative(s.identity_direct_weight), "identity-direct-weight", ">= 0");
   require(s.warmup_steps >= 0, "warmup-steps", ">= 0");
+  require(s.generator_average_decay >= 0 && s.generator_average_decay < 1, "generator-average-decay", "in [0, 1)");
   require(s.correction_max_hz >= 0 && s.correction_max_hz < 8000, "correction-max-hz", "in (0, 8000) or 0");
 }
 

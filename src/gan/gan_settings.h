@@ -130,6 +130,14 @@ struct GanSettings {
   GanDiscView disc_view = GanDiscView::kWaveform;
   // Linear learning-rate warm-up over the first N steps (0: none, the original).
   long long warmup_steps = 0;
+  // Both generators also keep an exponential moving average of their weights over the training
+  // steps (Polyak averaging, as GANs' generators commonly do: Yazici et al. 2019; Karras et al.
+  // 2018), debiased so that step s weighs decay^(t - s) at step t whatever the initial weights:
+  // translation uses it (gas-to-real --use-last-weights: the last step's). Training itself is
+  // unchanged (the average never feeds back). Issue 34: a band-gain translator's kept parameters
+  // swing by more than their bound between checkpoints 250 steps apart (bench/RESULTS.md). 0 = no
+  // average, the original; files without the key: 0.
+  double generator_average_decay = 0.0;
   GanPrecision precision = GanPrecision::kFloat32;  // training arithmetic (bfloat16: CPU autocast)
   std::string real_list;
   std::string synthetic_list;

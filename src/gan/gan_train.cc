@@ -19,6 +19,7 @@
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
+#include "gan/gan_weight_average.h"
 #include "gan/gan_settings.h"
 #include "gan/torch_compat.h"
 #include "gan/ts_rirgan.h"
@@ -664,6 +665,7 @@ class StepLoop {
       const auto t0 = Clock::now();
       const StepLosses losses = trainer_.step(step_ + 1);
       ++step_;
+      gan::update_generator_averages(model_, step_);
       const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
       total_step_s_ += dt;
       log << format_row(step_, losses, dt) << '\n' << std::flush;

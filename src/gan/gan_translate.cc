@@ -19,6 +19,7 @@
 #include "util/cli.h"
 #include "util/error.h"
 #include "util/parallel.h"
+#include "util/strings.h"
 
 namespace fs = std::filesystem;
 
@@ -98,7 +99,9 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   auto t0 = Clock::now();
   GanSettings settings;
   long long step = 0;
-  gan::Generator generator = gan::load_generator(checkpoint, network, &settings, &step);
+  const gan::GeneratorWeights weights =
+      o.use_last_weights ? gan::GeneratorWeights::kLast : gan::GeneratorWeights::kAverageWhereKept;
+  gan::Generator generator = gan::load_generator(checkpoint, network, weights, &settings, &step);
   const std::string dir_settings = (fs::path(checkpoint).parent_path() / "settings.txt").string();
   if (fs::exists(dir_settings)) {
     check_same_architecture(read_gan_settings_file(dir_settings), settings, checkpoint + " vs " + dir_settings);
@@ -108,8 +111,11 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   generator->eval();
   drop_kept_tensor_memory();  // the checkpoint's other networks and optimiser state
   result.model_load_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  log_info("loaded " + network + " (width " + std::to_string(settings.width) + ", step " +
-           std::to_string(step) + ") from " + checkpoint);
+  const bool averaged = !o.use_last_weights && settings.generator_average_decay > 0;
+  log_info("loaded " + network + " (width " + std::to_string(settings.width) + ", step " + std::to_string(step) +
+           (averaged ? ", weights averaged over the steps, decay " + format_double(settings.generator_average_decay, 6)
+                     : std::string(", the last step's weights")) +
+           ") from " + checkpoint);
 
   t0 = Clock::now();
   auto last_progress = t0;

@@ -78,6 +78,9 @@ struct GanTranslateOptions {
   // (oneDNN); 1.8-2.3x faster translation (bench/RESULTS.md) on CPUs with AVX512-BF16/AMX, output within ~1% RMS of float32
   // (tests/gan/gan_networks_test.cc). Refused where LibTorch sums in bfloat16 (gan_bfloat16.h).
   GanPrecision precision = GanPrecision::kFloat32;
+  // A model trained with --generator-average-decay translates with its generator's averaged
+  // weights; true: with the last step's instead (a model without an average has only those).
+  bool use_last_weights = false;
 
   void Register(OptionsItf* opts);  // gan_options.cc; input list and out dir are positional
 };

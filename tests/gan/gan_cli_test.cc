@@ -227,6 +227,40 @@ TEST_F(GanCli, DeterministicAndResumesExactly) {
   EXPECT_EQ(slurp(dir_ + "/ta/syn_3.wav"), slurp(dir_ + "/tc/syn_3.wav"));
 }
 
+// --generator-average-decay: training is the same run as without it (the same loss log), the
+// last step's weights translate as that run's do (--use-last-weights), the default translation
+// uses the average (another output), and a resumed run continues the average exactly.
+TEST_F(GanCli, WeightAverageLeavesTrainingAloneAndTranslates) {
+  const std::string steps = "--steps=4 --checkpoint-every=2 --generator=band-gain ";
+  ASSERT_EQ(run(train(steps, "plain"), dir_).status, 0);
+  RunResult r = run(train(steps + "--generator-average-decay=0.5", "avg"), dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(loss_rows(dir_ + "/plain/loss_log.csv"), loss_rows(dir_ + "/avg/loss_log.csv"));
+  ASSERT_EQ(run(train("--steps=2 --generator=band-gain --generator-average-decay=0.5", "resumed"), dir_).status, 0);
+  // Another decay is another average: a resumed run must keep the model's.
+  r = run(train(steps + "--generator-average-decay=0.9 --resume", "resumed"), dir_);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--generator-average-decay=0.5"), std::string::npos) << r.err;
+  ASSERT_EQ(run(train(steps + "--generator-average-decay=0.5 --resume", "resumed"), dir_).status, 0);
+  auto translate = [&](const std::string& model, const std::string& extra, const std::string& out) {
+    RunResult t = run(kBin + "/gas-to-real --model=" + dir_ + "/" + model + " " + extra + " " + synthetic_ + " " +
+                          dir_ + "/" + out, dir_);
+    EXPECT_EQ(t.status, 0) << t.err;
+    return t.err;
+  };
+  EXPECT_NE(translate("plain", "", "t_plain").find("the last step's weights"), std::string::npos);
+  EXPECT_NE(translate("avg", "", "t_avg").find("weights averaged over the steps, decay 0.5"), std::string::npos);
+  EXPECT_NE(translate("avg", "--use-last-weights", "t_last").find("the last step's weights"), std::string::npos);
+  translate("resumed", "", "t_resumed");
+  for (const std::string id : {"syn_0", "syn_3"}) {
+    const std::string plain = slurp(dir_ + "/t_plain/" + id + ".wav");
+    ASSERT_FALSE(plain.empty());
+    EXPECT_EQ(slurp(dir_ + "/t_last/" + id + ".wav"), plain) << id;
+    EXPECT_NE(slurp(dir_ + "/t_avg/" + id + ".wav"), plain) << id;
+    EXPECT_EQ(slurp(dir_ + "/t_resumed/" + id + ".wav"), slurp(dir_ + "/t_avg/" + id + ".wav")) << id;
+  }
+}
+
 // --print-settings prints the settings.txt that training with the same options writes, byte for
 // byte (what the chosen generator does not use zeroed as training zeroes it), and leaves the model
 // dir alone: run_table2.sh checks a model trained elsewhere against it.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <utility>
 
 #include <c10/core/CPUAllocator.h>
@@ -18,6 +19,7 @@
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
+#include "gan/gan_weight_average.h"
 #include "util/error.h"
 #include "util/remove_tree.h"
 
@@ -555,6 +557,130 @@ TEST(GanOptimiser, MatchesTensorFlowRmsProp) {
   EXPECT_NEAR(p[1].item<double>(), v[1], 1e-12);
 }
 
+void expect_equal_parameters(torch::nn::Module& x, torch::nn::Module& y) {
+  const auto px = x.parameters(), py = y.parameters();
+  ASSERT_EQ(px.size(), py.size());
+  for (size_t i = 0; i < px.size(); ++i) EXPECT_TRUE(torch::equal(px[i], py[i])) << "parameter " << i;
+}
+
+// `a` saved at `step` to `path` and loaded into a model of other initial weights.
+std::unique_ptr<CycleGan> reloaded(const CycleGan& a, const std::string& path, long long step) {
+  save_checkpoint(path, a, step);
+  torch::manual_seed(6);
+  auto b = std::make_unique<CycleGan>(a.settings, torch::kCPU);
+  EXPECT_EQ(load_checkpoint(path, *b), step);
+  return b;
+}
+
+// The averaged weights after t steps are the weighted mean of the live weights at steps 1..t with
+// weights decay^(t-s), written out as that sum (not the recursion the code runs), whatever the
+// average held before step 1; a decay of 0 keeps the last step's weights.
+TEST(GanWeightAverage, IsTheDecayWeightedMeanOfTheStepsWeights) {
+  EXPECT_EQ(weight_average_rate(0.999, 1), 1.0);
+  EXPECT_EQ(weight_average_rate(0.0, 7), 1.0);
+  EXPECT_NEAR(weight_average_rate(0.5, 2), 0.5 / 0.75, 1e-15);
+  EXPECT_THROW(weight_average_rate(0.5, 0), Error);
+  torch::manual_seed(11);
+  Generator live = make_generator([] { GanSettings s; s.width = 2; return s; }(), GanInit::kHe);
+  Generator average = make_generator([] { GanSettings s; s.width = 2; return s; }(), GanInit::kHe);
+  // The average starts away from every live value, to show the start does not count.
+  { torch::NoGradGuard no_grad; for (auto& p : average->parameters()) p.fill_(1e3); }
+  for (double decay : {0.0, 0.5, 0.9, 0.995}) {
+    const int steps = 40;
+    std::vector<std::vector<torch::Tensor>> history;
+    torch::manual_seed(12);
+    for (long long t = 1; t <= steps; ++t) {
+      std::vector<torch::Tensor> values;
+      {
+        torch::NoGradGuard no_grad;
+        for (auto& p : live->parameters()) p.copy_(torch::randn_like(p) + double(t) / steps);
+      }
+      for (auto& p : live->parameters()) values.push_back(p.detach().to(torch::kDouble).clone());
+      history.push_back(values);
+      update_weight_average(*average, *live, decay, t);
+    }
+    const auto averaged = average->parameters();
+    for (size_t i = 0; i < averaged.size(); ++i) {
+      torch::Tensor sum = torch::zeros_like(history[0][i]);
+      double norm = 0.0;
+      for (int s = 1; s <= steps; ++s) {
+        const double w = std::pow(decay, steps - s);  // pow(0, 0) = 1: the last step alone
+        sum += w * history[s - 1][i];
+        norm += w;
+      }
+      const torch::Tensor expected = sum / norm;
+      EXPECT_LT((averaged[i].to(torch::kDouble) - expected).abs().max().item<double>(), 1e-5)
+          << "decay " << decay << ", parameter " << i;
+    }
+  }
+}
+
+// The averages are built after the four networks, so a model that keeps them starts from the same
+// weights as one that does not (its training is that model's), and they start as the generators.
+TEST(GanWeightAverage, KeepingAnAverageLeavesTheModelsInitialWeights) {
+  GanSettings s;
+  s.width = 2;
+  torch::manual_seed(5);
+  CycleGan plain(s, torch::kCPU);
+  s.generator_average_decay = 0.99;
+  torch::manual_seed(5);
+  CycleGan averaged(s, torch::kCPU);
+  ASSERT_FALSE(plain.g_real_average);
+  ASSERT_TRUE(averaged.g_real_average && averaged.g_synthetic_average);
+  expect_equal_parameters(*plain.g_real, *averaged.g_real);
+  expect_equal_parameters(*plain.g_synthetic, *averaged.g_synthetic);
+  expect_equal_parameters(*plain.d_real, *averaged.d_real);
+  expect_equal_parameters(*plain.d_synthetic, *averaged.d_synthetic);
+  expect_equal_parameters(*averaged.g_synthetic, *averaged.g_synthetic_average);
+  // No optimiser, no gradient: only the update moves it.
+  for (const auto& p : averaged.g_synthetic_average->parameters()) EXPECT_FALSE(p.requires_grad());
+}
+
+// A checkpoint keeps the averages; a generator loads from them or from the last weights as asked,
+// and a model without an average gives its last weights either way.
+TEST(GanWeightAverage, CheckpointKeepsTheAveragesAndLoadsEitherWeights) {
+  const std::string dir = (fs::temp_directory_path() / ("tsrir_gan_avg_" + std::to_string(::getpid()))).string();
+  fs::create_directories(dir);
+  GanSettings s;
+  s.width = 2;
+  s.generator_average_decay = 0.9;
+  torch::manual_seed(5);
+  CycleGan a(s, torch::kCPU);
+  update_generator_averages(a, 1);
+  {
+    torch::NoGradGuard no_grad;
+    for (auto& p : a.g_real->parameters()) p.add_(1.0);  // the live weights move on
+  }
+  update_generator_averages(a, 2);  // g_real's average now lies between its two steps' weights
+  const std::string path = dir + "/checkpoint.pt";
+  std::unique_ptr<CycleGan> b = reloaded(a, path, 2);
+  expect_equal_parameters(*a.g_real_average, *b->g_real_average);
+  expect_equal_parameters(*a.g_synthetic_average, *b->g_synthetic_average);
+  const auto pa = a.g_real_average->parameters();
+  GanSettings loaded;
+  long long step = 0;
+  const auto first = [&](GeneratorWeights w) { return load_generator(path, "g_real", w, &loaded, &step)->parameters()[0]; };
+  EXPECT_TRUE(torch::equal(first(GeneratorWeights::kAverageWhereKept), pa[0]));
+  EXPECT_TRUE(torch::equal(first(GeneratorWeights::kLast), a.g_real->parameters()[0]));
+  EXPECT_FALSE(torch::equal(pa[0], a.g_real->parameters()[0]));
+  // Without an average in the model: the last weights, and a checkpoint without the average's
+  // tensors is refused by a model that expects them.
+  GanSettings plain = s;
+  plain.generator_average_decay = 0;
+  CycleGan c(plain, torch::kCPU);
+  save_checkpoint(dir + "/plain.pt", c, 1);
+  EXPECT_TRUE(torch::equal(load_generator(dir + "/plain.pt", "g_real", GeneratorWeights::kAverageWhereKept, &loaded, &step)
+                               ->parameters()[0],
+                           c.g_real->parameters()[0]));
+  try {
+    load_checkpoint(dir + "/plain.pt", *b);
+    FAIL() << "a checkpoint without the averages loaded into a model that keeps them";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("g_real_average"), std::string::npos) << e.what();
+  }
+  remove_tree(dir);
+}
+
 TEST(GanCheckpoint, RoundTripAndErrors) {
   const std::string dir = temp_dir("ckpt");
   GanSettings s;
@@ -564,16 +690,14 @@ TEST(GanCheckpoint, RoundTripAndErrors) {
   CycleGan a(s, torch::kCPU);
   a.optimizers[1].mean_square()[0].fill_(0.25);
   const std::string path = dir + "/checkpoint.pt";
-  save_checkpoint(path, a, 17);
-  torch::manual_seed(6);
-  CycleGan b(s, torch::kCPU);
-  EXPECT_EQ(load_checkpoint(path, b), 17);
-  const auto pa = a.g_synthetic->parameters(), pb = b.g_synthetic->parameters();
-  for (size_t i = 0; i < pa.size(); ++i) EXPECT_TRUE(torch::equal(pa[i], pb[i]));
+  std::unique_ptr<CycleGan> reloaded_a = reloaded(a, path, 17);
+  CycleGan& b = *reloaded_a;
+  expect_equal_parameters(*a.g_synthetic, *b.g_synthetic);
+  const auto pa = a.g_synthetic->parameters();
   EXPECT_TRUE(torch::equal(a.optimizers[1].mean_square()[0], b.optimizers[1].mean_square()[0]));
   GanSettings loaded;
   long long step = 0;
-  Generator g = load_generator(path, "g_synthetic", &loaded, &step);
+  Generator g = load_generator(path, "g_synthetic", GeneratorWeights::kLast, &loaded, &step);
   EXPECT_EQ(loaded.width, 2);
   EXPECT_EQ(step, 17);
   EXPECT_TRUE(torch::equal(g->parameters()[0], pa[0]));

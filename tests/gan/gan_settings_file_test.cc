@@ -99,6 +99,7 @@ TEST(GanSettingsFile, KeysAFileLacksKeepThePapersValues) {
   EXPECT_EQ(first.generator_update, GanGeneratorUpdate::kSequential);
   EXPECT_EQ(first.disc_augment, GanDiscAugment::kNone);
   EXPECT_EQ(first.warmup_steps, 0);
+  EXPECT_EQ(first.generator_average_decay, 0.0);  // no average: the last weights translate
 }
 
 // A new option in GanSettings::Register is a new key of the file with no other edit.
@@ -110,6 +111,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
   s.disc_view = GanDiscView::kWaveformEnvelope;  // likewise
   s.identity_gain_weight = 2;  // likewise
   s.identity_direct_bands = 0, s.identity_direct_weight = 0.5;  // likewise
+  s.generator_average_decay = 0.99;  // likewise
   const SettingsValues values = gan_settings_values(s);
   ASSERT_GE(recorder.names.size(), 19u);
   for (std::string name : recorder.names) {
@@ -124,6 +126,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.correction_weight = 0.125, s.identity_gain_weight = k % 2 ? 0.0 : 1.5;
     s.identity_direct_bands = k % 2 ? 1 : 3;
     s.identity_direct_weight = k % 2 ? 0.0 : 0.75;
+    s.generator_average_decay = k % 2 ? 0.0 : 0.9995;
     s.generator = kGanGeneratorNames[k].second;
     s.init = kGanInitNames[k % 2].second, s.decoder = kGanDecoderNames[k % 2].second;
     s.generator_activation = kGanActivationNames[k % 2].second;
@@ -148,6 +151,8 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_EQ(text.find("identity_direct_bands") != std::string::npos, s.identity_direct_bands != 1);
     EXPECT_EQ(back.identity_direct_weight, s.identity_direct_weight);
     EXPECT_EQ(text.find("identity_direct_weight") != std::string::npos, s.identity_direct_weight != 0.0);
+    EXPECT_EQ(back.generator_average_decay, s.generator_average_decay);
+    EXPECT_EQ(text.find("generator_average_decay") != std::string::npos, s.generator_average_decay != 0.0);
     EXPECT_EQ(back.real_list, "a b/real.scp");
     EXPECT_EQ(back.synthetic_list, "");
   }
@@ -168,6 +173,8 @@ TEST(GanSettingsFile, ErrorsNameTheFileAndLine) {
   EXPECT_NE(error_of(head + "identity_gain_weight -1\n").find("identity_gain_weight"), std::string::npos);
   EXPECT_NE(error_of(head + "identity_direct_bands 12\n").find("identity_direct_bands"), std::string::npos);
   EXPECT_NE(error_of(head + "identity_direct_weight -1\n").find("identity_direct_weight"), std::string::npos);
+  EXPECT_NE(error_of(head + "generator_average_decay 1\n").find("generator_average_decay must be in [0, 1)"), std::string::npos);
+  EXPECT_NE(error_of(head + "generator_average_decay -0.5\n").find("generator_average_decay"), std::string::npos);
   EXPECT_NE(error_of(head + "slice_length 8192\n").find("unsupported"), std::string::npos);
   EXPECT_EQ(error_of(kFirstFormatFile), "");
 }
