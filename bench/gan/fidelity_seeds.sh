@@ -7,13 +7,13 @@
 # still going then is stopped and reads as failed ("stopped at the deadline"), later ones are not
 # started; both are counted as not passed.
 # Usage: bench/gan/fidelity_seeds.sh [build-dir] [seeds, e.g. "1 2 3 4 5"] ["ts-rirgan-train options"] [kinds]
-# Default options: the program's defaults at the width, batch and steps issue 17 names; default
+# Default options: the program's defaults at the width and batch issue 17 names and the 2000 steps they are judged at; default
 # kinds: all four (low-frequency decay direct early).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$here/build}
 seeds=${2:-1 2 3 4 5}
-args=${3:---width=16 --batch-size=4 --steps=1000}
+args=${3:---width=16 --batch-size=4 --steps=2000}
 kinds=${4:-low-frequency decay direct early}
 suite=$build/bin/gan-fidelity-suite
 [[ -x $suite ]] || { echo "missing $suite (ninja -C $build gan-fidelity-suite)" >&2; exit 1; }

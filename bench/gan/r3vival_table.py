@@ -58,6 +58,8 @@ def main():
     ap.add_argument("translated")
     for k in ("command", "train-args", "train-s", "machine", "date", "load", "split"):
         ap.add_argument("--" + k, required=True)
+    # The generator the model's settings.txt records: the program's defaults change over time.
+    ap.add_argument("--generator", default="")
     a = ap.parse_args()
     real, gas, g = load(a.real), load(a.gas), load(a.translated)
     params = [("T60", "s"), ("DRR", "dB"), ("EDT", "s"), ("C50", "dB")]
@@ -73,7 +75,8 @@ def main():
     w("only to measure.\n")
     w("Command, from the repository root (it writes this page):\n")
     w("```\n" + a.command + "\n```\n")
-    w("Training options: `" + a.train_args + "` (everything else: the program's defaults). Training took "
+    defaults = "the program's defaults" + ("; the model's settings.txt: generator " + a.generator if a.generator else "")
+    w("Training options: `" + a.train_args + "` (everything else: " + defaults + "). Training took "
       + a.train_s + " s. Machine: " + a.machine + "; " + a.date + "; load " + a.load + ".\n")
     w("## Table 1 on the test split (means over the test RIRs)\n")
     w("| parameter | real | GAS | G(GAS) | closer to real |")

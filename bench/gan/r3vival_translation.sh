@@ -48,6 +48,7 @@ for set in real_test gas_test; do "$bin/rir-metrics" --format=json "$work/$set.s
 cmd="bench/gan/r3vival_translation.sh ${1:-build}${2:+ $2}${3:+ \"$3\"}"
 python3 "$here/bench/gan/r3vival_table.py" "$work/real_test.json" "$work/gas_test.json" "$work/g_gas.json" \
   --command "$cmd" --train-args "$train_args" --train-s "$train_s" \
+  --generator "$(awk '$1 == "generator" {print $2}' "$work/model/settings.txt")" \
   --machine "$(uname -n), $(getconf _NPROCESSORS_ONLN) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')" \
   --date "$date0" --load "$load0 at start, $(cut -d' ' -f1-3 /proc/loadavg) at end" \
   --split "$(wc -l < "$work/train_positions") of $(cut -d' ' -f1 "$work/in/rir.scp" | position | sort -u | wc -l) source positions for training ($(wc -l < "$work/real_train.scp") real + $(wc -l < "$work/gas_train.scp") GAS RIRs), the other positions for test ($(wc -l < "$work/real_test.scp") + $(wc -l < "$work/gas_test.scp"))" \

@@ -71,7 +71,8 @@ gan_width=64
 gan_batch_size=64
 gan_device=cpu
 gan_opts=""           # extra ts-rirgan-train options (default: the program's defaults, which pass the
-                      # translation-fidelity suite (bench/RESULTS.md); the paper's exact training: "--config=../../conf/ts-rirgan-paper.conf")
+                      # translation-fidelity suite (bench/RESULTS.md); the paper's exact training: "--config=../../conf/ts-rirgan-paper.conf",
+                      # the defaults before 2026-12-04: "--config=../../conf/ts-rirgan-residual.conf")
 gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
                       # spin-wait: 2 threads measured ~10x slower than 1 under load)
 metrics_definition=irstats
@@ -130,13 +131,13 @@ if [ "$demo" = true ]; then
   data=demo/data; exp=demo/exp; results=demo/RESULTS.md
   nj=2; num_threads=2; gan_num_threads=1; write_wavs=true
   # The program's defaults (the configuration that passes tests/gan's translation-fidelity suite,
-  # issue 17); ts-rirgan-train stops with an error if its generator collapses.
+  # issue 34); ts-rirgan-train stops with an error if its generator collapses.
   gan_opts=""
   case $demo_size in
-    # Steps and width bound the demo's GAN training on 2 cores. The small demo trains exactly the
-    # configuration the fidelity suite measures (width 8, batch 4, 300 steps: ~0.35 CPU-s per
-    # step, ~2 minutes), far from the paper's model (RESULTS.md says so); the tiny demo only
-    # proves that the pipeline runs.
+    # Steps and width bound the demo's GAN training on 2 cores. The small demo trains the defaults
+    # briefly (width 8, batch 4, 300 steps, a few minutes), short of what the fidelity suite
+    # measures (width 16, 2000 steps: ~25 minutes; bench/asr/run_table2.sh's G rows) and far from
+    # the paper's model (RESULTS.md says so); the tiny demo only proves that the pipeline runs.
     tiny) gan_steps=6; gan_width=4; gan_batch_size=4 ;;
     small) gan_steps=300; gan_width=8; gan_batch_size=4 ;;
   esac
@@ -422,7 +423,13 @@ if [ $stage -le 4 ] && [ $stop_stage -ge 4 ]; then
     begin_stage 4 "TS-RIRGAN training (steps $gan_steps, width $gan_width, batch $gan_batch_size, $gan_device)"
     need_program ts-rirgan-train
     require "$rirs/real_train/rir_list" "$rirs/gas_train/rir_list"
-    sig="steps=$gan_steps width=$gan_width batch=$gan_batch_size opts=$gan_opts seed=$seed threads=${gan_num_threads:-$num_threads} $(content_of "$rirs/real_train/.done" "$rirs/gas_train/.done" | md5sum)"
+    # The settings a model trained now would store (--print-settings: every option's value, the
+    # program's defaults included), so that new defaults train the model anew.
+    # shellcheck disable=SC2086
+    settings=$(ts-rirgan-train --real="$rirs/real_train/rir_list" --synthetic="$rirs/gas_train/rir_list" \
+      --width="$gan_width" --batch-size="$gan_batch_size" --seed="$seed" $gan_opts --print-settings "$gan_dir" | md5sum) ||
+      die "ts-rirgan-train --print-settings failed"
+    sig="steps=$gan_steps width=$gan_width batch=$gan_batch_size opts=$gan_opts seed=$seed threads=${gan_num_threads:-$num_threads} settings=${settings%% *} $(content_of "$rirs/real_train/.done" "$rirs/gas_train/.done" | md5sum)"
     if is_done "$gan_dir/.done" "$sig"; then
       log "stage 4: TS-RIRGAN already trained"
     else

@@ -101,7 +101,7 @@ struct GeneratorSpec {
 // correction_max_hz > 0 (residual, band-gain): the correction passes a fixed linear-phase
 // low-pass (Blackman-windowed sinc, stopband below -70 dB from correction_max_hz up, -6 dB at 5/6
 // of it) before the causal mask, so it adds low-frequency structure only (gan_settings.h says why).
-// kind band-gain (opt-in, not yet the default; a departure): the residual's low-passed correction plus
+// kind band-gain (the toolkit's default since issue 34; a departure): the residual's low-passed correction plus
 // gan_band_gain.h's smooth gain per band and per time knot after the onset, applied to the input's
 // own band signals and predicted from the bottleneck's features: the whole band's levels (direct
 // sound, early energy, decay per band) can change while each input keeps its fine structure. Its

@@ -65,7 +65,7 @@ struct GanSettings {
   // pass unchanged. A gain identity in the gains' own units (nepers), where a quiet band's late
   // level counts as much as its early one; the waveform identity L1 hardly sees a tail 40 dB down
   // (a departure; the paper has only the waveform identity). Issue 34: without it the decay kind's translators changed the 500-1000 Hz decay
-  // with the 2-8 kHz one. 0 = none, the default; files without the key: 0.
+  // with the 2-8 kHz one. 0 = none, the paper's (the toolkit's default: 10, gan_options.cc); files without the key: 0.
   double identity_gain_weight = 0.0;
   // Band-gain generators: how many of the lowest bands' direct-sound knots the gain identity
   // holds too (gan::identity_held_gains; 1 = band 0, below 250 Hz; 0 = none, the direct sound is
@@ -83,7 +83,7 @@ struct GanSettings {
   // mean over the translations) in the generators' loss: the correction adds only what the
   // discriminators ask for, as gain_weight does for the gains (a departure; the paper has no such
   // term; issue 34: without it band-gain's correction added 13-24 dB of low-frequency energy the
-  // real domain did not have). 0 = none, the default; files without the key: 0.
+  // real domain did not have). 0 = none, the paper's (the toolkit's default: 1); files without the key: 0.
   double correction_weight = 0.0;
   double rmsprop_initial_ms = 1.0;  // RMSProp's initial mean square: 1 (TF, the original) or 0
   // Generator up-path channels: original (16w, 8w, 4w: the original's code, 66.6 M parameters

@@ -231,12 +231,14 @@ TEST_F(GanCli, DeterministicAndResumesExactly) {
 // last step's weights translate as that run's do (--use-last-weights), the default translation
 // uses the average (another output), and a resumed run continues the average exactly.
 TEST_F(GanCli, WeightAverageLeavesTrainingAloneAndTranslates) {
-  const std::string steps = "--steps=4 --checkpoint-every=2 --generator=band-gain ";
-  ASSERT_EQ(run(train(steps, "plain"), dir_).status, 0);
+  const std::string steps = "--steps=4 --checkpoint-every=2 ";
+  ASSERT_EQ(run(train(steps + "--generator-average-decay=0", "plain"), dir_).status, 0);
+  ASSERT_EQ(run(train(steps, "default"), dir_).status, 0);  // the defaults keep an average (0.995)
   RunResult r = run(train(steps + "--generator-average-decay=0.5", "avg"), dir_);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(loss_rows(dir_ + "/plain/loss_log.csv"), loss_rows(dir_ + "/avg/loss_log.csv"));
-  ASSERT_EQ(run(train("--steps=2 --generator=band-gain --generator-average-decay=0.5", "resumed"), dir_).status, 0);
+  EXPECT_EQ(loss_rows(dir_ + "/plain/loss_log.csv"), loss_rows(dir_ + "/default/loss_log.csv"));
+  ASSERT_EQ(run(train("--steps=2 --generator-average-decay=0.5", "resumed"), dir_).status, 0);
   // Another decay is another average: a resumed run must keep the model's.
   r = run(train(steps + "--generator-average-decay=0.9 --resume", "resumed"), dir_);
   EXPECT_EQ(r.status, 1);
@@ -251,12 +253,14 @@ TEST_F(GanCli, WeightAverageLeavesTrainingAloneAndTranslates) {
   EXPECT_NE(translate("plain", "", "t_plain").find("the last step's weights"), std::string::npos);
   EXPECT_NE(translate("avg", "", "t_avg").find("weights averaged over the steps, decay 0.5"), std::string::npos);
   EXPECT_NE(translate("avg", "--use-last-weights", "t_last").find("the last step's weights"), std::string::npos);
+  EXPECT_NE(translate("default", "", "t_default").find("weights averaged over the steps, decay 0.995"), std::string::npos);
   translate("resumed", "", "t_resumed");
   for (const std::string id : {"syn_0", "syn_3"}) {
     const std::string plain = slurp(dir_ + "/t_plain/" + id + ".wav");
     ASSERT_FALSE(plain.empty());
     EXPECT_EQ(slurp(dir_ + "/t_last/" + id + ".wav"), plain) << id;
     EXPECT_NE(slurp(dir_ + "/t_avg/" + id + ".wav"), plain) << id;
+    EXPECT_NE(slurp(dir_ + "/t_default/" + id + ".wav"), plain) << id;
     EXPECT_EQ(slurp(dir_ + "/t_resumed/" + id + ".wav"), slurp(dir_ + "/t_avg/" + id + ".wav")) << id;
   }
 }
@@ -265,7 +269,8 @@ TEST_F(GanCli, WeightAverageLeavesTrainingAloneAndTranslates) {
 // byte (what the chosen generator does not use zeroed as training zeroes it), and leaves the model
 // dir alone: run_table2.sh checks a model trained elsewhere against it.
 TEST_F(GanCli, PrintSettingsIsTheSettingsTrainingStores) {
-  for (const std::string options : {"--steps=1", "--steps=1 --generator=band-gain --gain-weight=2 --correction-weight=1 --identity-gain-weight=4"}) {
+  for (const std::string options : {"--steps=1", "--steps=1 --gain-weight=2 --correction-weight=3 --identity-gain-weight=4",
+                                     "--steps=1 --generator=residual --generator-average-decay=0"}) {
     const std::string printed = dir_ + "/printed.txt";
     ASSERT_EQ(std::system((train(options + " --print-settings=true", "p") + " >" + printed + " 2>/dev/null").c_str()), 0)
         << options;
@@ -278,9 +283,38 @@ TEST_F(GanCli, PrintSettingsIsTheSettingsTrainingStores) {
   // The residual generator has no gains: gain_weight is stored as 0 whatever the option says, and
   // identity_gain_weight at 0 (so not at all).
   const std::string printed = dir_ + "/printed.txt";
-  ASSERT_EQ(std::system((train("--gain-weight=3 --identity-gain-weight=3 --print-settings=true", "p") + " >" + printed).c_str()), 0);
+  ASSERT_EQ(std::system((train("--generator=residual --gain-weight=3 --identity-gain-weight=3 --print-settings=true", "p") +
+                         " >" + printed).c_str()), 0);
   EXPECT_NE(slurp(printed).find("\ngain_weight 0\n"), std::string::npos) << slurp(printed);
   EXPECT_EQ(slurp(printed).find("identity_gain_weight"), std::string::npos) << slurp(printed);
+}
+
+// The defaults changed to the band-gain translator (issue 34); the paper's preset and the former
+// defaults' must still give the models they gave: no weight average, no envelope critic, no
+// augmentation, their own generator.
+TEST_F(GanCli, PresetsKeepTheirConfigurations) {
+  const std::string conf = std::string(TSRIR_SOURCE_DIR) + "/conf/";
+  const std::string printed = dir_ + "/printed.txt";
+  auto settings = [&](const std::string& options) {
+    EXPECT_EQ(std::system((train(options + " --print-settings=true", "p") + " >" + printed + " 2>/dev/null").c_str()), 0)
+        << options;
+    return slurp(printed);
+  };
+  const std::string defaults = settings("");
+  for (const char* line : {"\ngenerator band-gain\n", "\ndisc_view waveform+envelope\n", "\ngenerator_average_decay 0.995\n",
+                           "\ndisc_augment shift-gain-polarity\n", "\nidentity_gain_weight 10\n", "\ncorrection_weight 1\n"}) {
+    EXPECT_NE(defaults.find(line), std::string::npos) << line << " in\n" << defaults;
+  }
+  for (const std::string preset : {"ts-rirgan-paper.conf", "ts-rirgan-residual.conf"}) {
+    const std::string text = settings("--config=" + conf + preset);
+    const bool paper = preset == "ts-rirgan-paper.conf";
+    EXPECT_NE(text.find(paper ? "\ngenerator original\n" : "\ngenerator residual\n"), std::string::npos) << preset << text;
+    EXPECT_EQ(text.find("disc_view"), std::string::npos) << preset << text;  // stored only when not the waveform
+    EXPECT_NE(text.find("\ndisc_augment none\n"), std::string::npos) << preset << text;
+    EXPECT_EQ(text.find("generator_average_decay"), std::string::npos) << preset << text;  // stored only when not 0
+    EXPECT_EQ(text.find("identity_gain_weight"), std::string::npos) << preset << text;
+    EXPECT_EQ(text.find("correction_weight"), std::string::npos) << preset << text;
+  }
 }
 
 // The energy of (out - in) relative to in's, both second-differenced (|H|^2 = 16 sin^4(pi f/fs):
