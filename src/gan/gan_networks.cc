@@ -322,11 +322,13 @@ torch::Tensor GeneratorImpl::activate(const torch::Tensor& x) const {
   return negative_slope_ > 0 ? torch::leaky_relu(x, negative_slope_) : torch::relu(x);
 }
 
-torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
+GeneratorPass GeneratorImpl::pass(torch::Tensor x) {
+  GeneratorPass result;
   if (!residual_) {
     for (auto& layer : down_) x = activate(layer->forward(x));
     for (size_t i = 0; i + 1 < up_.size(); ++i) x = activate(up_[i]->forward(x));
-    return torch::tanh(up_.back()->forward(x));
+    result.output = torch::tanh(up_.back()->forward(x));
+    return result;
   }
   const torch::Tensor input = x;
   torch::Tensor scale, onset, mask;
@@ -359,12 +361,15 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
   }
   // The network works at the input's unit RMS, so this is the correction's energy re the input's.
   // Only a pass with gradients can be penalised: translation and no-grad passes skip the work.
-  last_correction_ms_ = torch::GradMode::is_enabled()
-                            ? (correction.to(torch::kFloat) * mask.to(torch::kFloat)).pow(2).mean({1, 2})
-                            : torch::Tensor();
+  if (torch::GradMode::is_enabled()) {
+    result.correction_ms = (correction.to(torch::kFloat) * mask.to(torch::kFloat)).pow(2).mean({1, 2});
+  }
   torch::Tensor added = correction.to(input.scalar_type()) * scale;
-  if (!band_gain_) return input + added * mask;
-  added = added + band_gain_->forward(input, features, onset, &last_log_gains_).to(input.scalar_type());
+  if (!band_gain_) {
+    result.output = input + added * mask;
+    return result;
+  }
+  added = added + band_gain_->forward(input, features, onset, &result.log_gains).to(input.scalar_type());
   // At the input's peak level, as every RIR the discriminators see (the inputs are peak-normalised):
   // otherwise a stronger direct sound (a directional source) would also be a louder RIR, which no
   // real one is, and a translation would have to cut everything else instead.
@@ -374,7 +379,8 @@ torch::Tensor GeneratorImpl::forward(torch::Tensor x) {
     torch::NoGradGuard no_grad;
     input_peak = std::get<0>(input.abs().max(-1, true));
   }
-  return output * (input_peak / std::get<0>(output.abs().max(-1, true)).clamp_min(1e-8));
+  result.output = output * (input_peak / std::get<0>(output.abs().max(-1, true)).clamp_min(1e-8));
+  return result;
 }
 
 DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init, GanDiscView view) {

@@ -106,18 +106,26 @@ struct GeneratorSpec {
 // own band signals and predicted from the bottleneck's features: the whole band's levels (direct
 // sound, early energy, decay per band) can change while each input keeps its fine structure. Its
 // output is scaled to the input's peak (the discriminators see peak-normalised RIRs only).
+// What one generator pass computes beside its output, for training's penalties. Returned, not
+// kept in the module, so that one generator can run on two threads at once (training's lanes,
+// gan_train.cc).
+struct GeneratorPass {
+  torch::Tensor output;  // [batch, 1, 16384]
+  // Band-gain generators: the log gains [batch, bands, knots] (nepers) (training penalises them,
+  // --gain-weight); undefined for the other kinds.
+  torch::Tensor log_gains;
+  // Residual and band-gain generators: the waveform correction's mean square per RIR [batch], in
+  // units of the input's mean square (training penalises it, --correction-weight); undefined for
+  // the original generator and for a pass without gradients (translation).
+  torch::Tensor correction_ms;
+};
+
 class GeneratorImpl : public torch::nn::Module {
  public:
   explicit GeneratorImpl(const GeneratorSpec& spec, GanInit init = GanInit::kGlorot);
-  torch::Tensor forward(torch::Tensor x);
-  // Band-gain generators: the log gains [batch, bands, knots] (nepers) of the last forward pass
-  // (training penalises them, --gain-weight); undefined for the other kinds.
-  const torch::Tensor& last_log_gains() const { return last_log_gains_; }
-  // Residual and band-gain generators: the waveform correction's mean square per RIR [batch]
-  // over the last forward pass with gradients enabled, in units of the input's mean square
-  // (training penalises it, --correction-weight); undefined for the original generator and after
-  // a pass without gradients (translation).
-  const torch::Tensor& last_correction_ms() const { return last_correction_ms_; }
+  torch::Tensor forward(torch::Tensor x) { return pass(std::move(x)).output; }
+  // The forward pass with what the penalties need. Changes nothing in the module.
+  GeneratorPass pass(torch::Tensor x);
 
  private:
   torch::Tensor activate(const torch::Tensor& x) const;
@@ -127,8 +135,6 @@ class GeneratorImpl : public torch::nn::Module {
   std::vector<SameConv1d> down_;
   std::vector<SameConvTranspose1d> up_;
   BandGain band_gain_{nullptr};  // band-gain generators only
-  torch::Tensor last_log_gains_;
-  torch::Tensor last_correction_ms_;
 };
 TORCH_MODULE(Generator);
 

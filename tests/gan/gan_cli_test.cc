@@ -227,6 +227,35 @@ TEST_F(GanCli, DeterministicAndResumesExactly) {
   EXPECT_EQ(slurp(dir_ + "/ta/syn_3.wav"), slurp(dir_ + "/tc/syn_3.wav"));
 }
 
+// --num-threads=2 runs the joint step's two halves at once on two threads (gan_train.cc,
+// joint_step): the same run as one thread, bit for bit (losses, and the weights through what they
+// translate, averaged and last), for the defaults (band-gain, gain identity) and for a residual
+// generator with the identity L1 on.
+TEST_F(GanCli, TwoThreadsTrainAsOne) {
+  for (const std::string options : {"", "--generator=residual --identity-weight=5"}) {
+    const std::string steps = "--steps=5 --width=4 --batch-size=3 " + options;
+    for (const std::string threads : {"1", "2"}) {
+      RunResult r = run(train(steps + " --num-threads=" + threads, "m" + threads), dir_);
+      ASSERT_EQ(r.status, 0) << options << ": " << r.err;
+    }
+    EXPECT_EQ(loss_rows(dir_ + "/m1/loss_log.csv"), loss_rows(dir_ + "/m2/loss_log.csv")) << options;
+    for (const std::string weights : {"", "--use-last-weights"}) {
+      for (const std::string threads : {"1", "2"}) {
+        RunResult t = run(kBin + "/gas-to-real --model=" + dir_ + "/m" + threads + " " + weights + " " + synthetic_ +
+                              " " + dir_ + "/t" + threads, dir_);
+        ASSERT_EQ(t.status, 0) << t.err;
+      }
+      for (const std::string id : {"syn_0", "syn_5"}) {
+        const std::string one = slurp(dir_ + "/t1/" + id + ".wav");
+        ASSERT_FALSE(one.empty());
+        EXPECT_EQ(slurp(dir_ + "/t2/" + id + ".wav"), one) << options << " " << weights << " " << id;
+      }
+      fs::remove_all(dir_ + "/t1"), fs::remove_all(dir_ + "/t2");
+    }
+    fs::remove_all(dir_ + "/m1"), fs::remove_all(dir_ + "/m2");
+  }
+}
+
 // --generator-average-decay: training is the same run as without it (the same loss log), the
 // last step's weights translate as that run's do (--use-last-weights), the default translation
 // uses the average (another output), and a resumed run continues the average exactly.

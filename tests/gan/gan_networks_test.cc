@@ -371,10 +371,11 @@ TEST(GanNetworks, CorrectionMeanSquareIsWhatTheOutputAddedReTheInput) {
   torch::Tensor x = torch::zeros({2, 1, 16384});
   x[0][0][200] = 1.0, x[1][0][4000] = 0.5;  // onsets at different samples, different levels
   x.narrow(2, 4100, 8000).normal_(0, 0.01);
-  const torch::Tensor added = (g->forward(x) - x).detach().to(torch::kDouble).flatten(1);
+  const GeneratorPass pass = g->pass(x);
+  const torch::Tensor added = (pass.output - x).detach().to(torch::kDouble).flatten(1);
   const torch::Tensor input_ms = x.to(torch::kDouble).flatten(1).pow(2).mean(1);
   const torch::Tensor expected = added.pow(2).mean(1) / input_ms;
-  const torch::Tensor got = g->last_correction_ms().detach().to(torch::kDouble);
+  const torch::Tensor got = pass.correction_ms.detach().to(torch::kDouble);
   ASSERT_EQ(got.size(0), 2);
   for (int i = 0; i < 2; ++i) {
     EXPECT_GT(expected[i].item<double>(), 1e-8);
@@ -382,12 +383,10 @@ TEST(GanNetworks, CorrectionMeanSquareIsWhatTheOutputAddedReTheInput) {
   }
   {
     torch::NoGradGuard no_grad;
-    g->forward(x);
-    EXPECT_FALSE(g->last_correction_ms().defined());
+    EXPECT_FALSE(g->pass(x).correction_ms.defined());
   }
   Generator original(spec_of(4, GanDecoder::kLight), GanInit::kHe);
-  original->forward(x);
-  EXPECT_FALSE(original->last_correction_ms().defined());
+  EXPECT_FALSE(original->pass(x).correction_ms.defined());
 }
 
 // --correction-max-hz: whatever the weights, the correction has nothing left from max_hz up
