@@ -105,8 +105,40 @@ def main():
         s_real = [t[2] for t in trip]
         w(f"| {p} | {spearman(s_in, s_out):.3f} | {spearman(s_in, s_real):.3f} | {spearman(s_out, s_real):.3f} |")
     w("")
-    w(f"{len(ids)} test RIRs. Whatever came out is the result; it is not tuned on this page.")
+    w(f"{len(ids)} test RIRs. Whatever came out is the result; it is not tuned on this page.\n")
+    write_band_table(w, real, gas, g, closer)
     print("\n".join(out))
+
+
+def band_means(rirs, band, key):
+    return mean([(r.get("bands") or {}).get(band, {}).get(key) for r in rirs.values()])
+
+
+def write_band_table(w, real, gas, g, closer):
+    """Per octave band, where G(GAS) moved each band's decay: what the broadband T60 and EDT are made of."""
+    bands = [b for b in ("62.5", "125", "250", "500", "1000", "2000", "4000")
+             if all(finite(band_means(d, b, "RT")) for d in (real, gas, g))]
+    w("## Per octave band: where the translation moved each decay (means over the test RIRs)\n")
+    w("rir-metrics' band RT (T30, T20 where the range is too small) and EDT. \"toward\": G(GAS) is closer to")
+    w("real than GAS in that band; \"away\": farther.\n")
+    w("| band (Hz) | RT real | RT GAS | RT G(GAS) | RT | EDT real | EDT GAS | EDT G(GAS) | EDT |")
+    w("|---|---|---|---|---|---|---|---|---|")
+    away = {"RT": [], "EDT": []}
+    for b in bands:
+        cells = [b]
+        for key in ("RT", "EDT"):
+            mr, ms, mg = (band_means(d, b, key) for d in (real, gas, g))
+            toward = abs(mg - mr) < abs(ms - mr)
+            if not toward:
+                away[key].append(f"{b} Hz ({ms:.2f} -> {mg:.2f} s, real {mr:.2f})")
+            cells += [f"{mr:.3f}", f"{ms:.3f}", f"{mg:.3f}", "toward" if toward else "away"]
+        w("| " + " | ".join(cells) + " |")
+    w("")
+    if closer >= 3:
+        return
+    w("**Why fewer than 3 of 4.** The broadband T60 and EDT are made of these bands' decays. Bands whose")
+    w("decay the translation moved away from the measured room: RT at " + (", ".join(away["RT"]) or "none") + ";")
+    w("EDT at " + (", ".join(away["EDT"]) or "none") + ".")
 
 
 if __name__ == "__main__":
