@@ -319,11 +319,6 @@ class Trainer {
     JointHalf to_real, to_synthetic;
     run_lanes([&] { to_real = joint_half(true, r, s, draw, identity); },
               [&] { to_synthetic = joint_half(false, s, r, draw, identity); });
-    const size_t n_real = m_.optimizers[0].params().size();
-    std::vector<torch::Tensor> grads(to_real.grads.size());
-    for (size_t i = 0; i < grads.size(); ++i) grads[i] = sum_defined(to_real.grads[i], to_synthetic.grads[i]);
-    m_.optimizers[0].step(std::vector<torch::Tensor>(grads.begin(), grads.begin() + long(n_real)));
-    m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
     // The logged totals as the one summed loss has them: each generator's own terms, both cycles and
     // both generators' penalties.
     const double cw = m_.settings.cycle_weight, iw = m_.settings.identity_weight;
@@ -342,6 +337,12 @@ class Trainer {
     L->cycle_real = to_synthetic.cycle.item<double>(), L->cycle_synthetic = to_real.cycle.item<double>();
     L->gain_rms_db = to_real.gain_rms_db;
     L->d_real = to_real.d_loss, L->d_synthetic = to_synthetic.d_loss;
+    // The generators step once both losses are known to be finite.
+    const size_t n_real = m_.optimizers[0].params().size();
+    std::vector<torch::Tensor> grads(to_real.grads.size());
+    for (size_t i = 0; i < grads.size(); ++i) grads[i] = sum_defined(to_real.grads[i], to_synthetic.grads[i]);
+    m_.optimizers[0].step(std::vector<torch::Tensor>(grads.begin(), grads.begin() + long(n_real)));
+    m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
   }
 
   // One half of the joint step, into `own`'s domain: g (G_SR when real_side) translates `other`
