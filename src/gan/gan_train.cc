@@ -308,7 +308,7 @@ class Trainer {
   // half's gradient is taken on its own and the two are added. That is the sum's gradient bit for
   // bit: every generator weight is used once in each half, so the one backward pass of the sum
   // also adds exactly two contributions per weight, and a + b = b + a in floating point
-  // (GanTrain.TwoLanesTrainAsOne checks the checkpoints). Each half then updates its own
+  // (GanCli.TwoThreadsTrainAsOne compares losses and translations). Each half then updates its own
   // discriminator, which reads no generator weight. So the halves can run at once on two threads
   // (--num-threads >= 2: lanes_), the generators stepped after both.
   void joint_step(long long draw, StepLosses* L) {
