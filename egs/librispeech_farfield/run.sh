@@ -74,7 +74,9 @@ gan_opts=""           # extra ts-rirgan-train options (default: the program's de
                       # translation-fidelity suite (bench/RESULTS.md); the paper's exact training: "--config=../../conf/ts-rirgan-paper.conf",
                       # the defaults before 2026-12-04: "--config=../../conf/ts-rirgan-residual.conf")
 gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
-                      # spin-wait: 2 threads measured ~10x slower than 1 under load)
+                      # spin-wait: 2 threads measured ~10x slower than 1 under load, when 2 threads
+                      # split each operator; since 2026-12-05 ts-rirgan-train runs its step's two
+                      # halves on one thread each, the same model as 1 thread, not re-measured under load)
 metrics_definition=irstats
 snrs=1..2             # SNR range lo..hi dB (reverberate-data --background-snrs; Kaldi lists a:b:c work too)
 write_wavs=false      # far-field dirs: pipes in wav.scp (Kaldi's way) or 16-bit wavs
