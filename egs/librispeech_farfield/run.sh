@@ -443,7 +443,8 @@ if [ $stage -le 4 ] && [ $stop_stage -ge 4 ]; then
         resume=(--resume); log "stage 4: resuming from $gan_dir/checkpoint.pt"
       else
         # A fresh start: only the files training writes go (never anything else in the dir).
-        rm -f "$gan_dir/checkpoint.pt" "$gan_dir/settings.txt" "$gan_dir/loss_log.csv" "$gan_dir/.done"
+        rm -f "$gan_dir/checkpoint.pt" "$gan_dir/generator-g_real.pt" "$gan_dir/generator-g_synthetic.pt" \
+          "$gan_dir/settings.txt" "$gan_dir/loss_log.csv" "$gan_dir/.done"
         printf '%s\n' "$sig" >"$gan_dir.settings"
       fi
       run_cmd=$gan_cmd run_logged "$exp/log/tsrirgan_train.log" ts-rirgan-train --real="$rirs/real_train/rir_list" \

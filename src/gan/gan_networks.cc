@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 #include <tuple>
 #include <utility>
 
@@ -12,85 +11,13 @@
 
 #include "gan/gan_binwise_product.h"
 #include "gan/gan_weight_average.h"
-#include "io/atomic_output.h"
 #include "util/error.h"
 
 namespace tsrir {
 namespace gan {
 namespace {
 
-constexpr const char* kCheckpointTag = "tsrir-ts-rirgan-checkpoint-v1";
 constexpr double kResidualInitGain = 0.1;
-
-std::string archive_key(const std::string& network, const std::string& parameter) {
-  std::string key = network + "__" + parameter;
-  std::replace(key.begin(), key.end(), '.', '_');
-  return key;
-}
-
-struct NamedNetwork {
-  std::string name;
-  torch::nn::Module* module;
-  TfRmsProp* optimizer;
-};
-
-// What a checkpoint holds: the four networks with their optimiser state, then the generators'
-// weight averages where the model keeps them (no optimiser).
-std::vector<NamedNetwork> networks_of(CycleGan& model) {
-  std::vector<NamedNetwork> networks = {{"g_real", model.g_real.get(), &model.optimizers[0]},
-                                        {"g_synthetic", model.g_synthetic.get(), &model.optimizers[1]},
-                                        {"d_real", model.d_real.get(), &model.optimizers[2]},
-                                        {"d_synthetic", model.d_synthetic.get(), &model.optimizers[3]}};
-  if (model.g_real_average) {
-    networks.push_back({"g_real_average", model.g_real_average.get(), nullptr});
-    networks.push_back({"g_synthetic_average", model.g_synthetic_average.get(), nullptr});
-  }
-  return networks;
-}
-
-void open_archive(const std::string& path, torch::serialize::InputArchive& archive) {
-  try {
-    archive.load_from(path, torch::kCPU);
-  } catch (const std::exception& e) {
-    std::string why = e.what();
-    why = why.substr(0, why.find('\n'));
-    throw Error(path + ": not a readable TS-RIRGAN checkpoint (" + why + ")");
-  }
-  c10::IValue tag;
-  if (!archive.try_read("format", tag) || !tag.isString() || tag.toStringRef() != kCheckpointTag) {
-    throw Error(path + ": not a TS-RIRGAN checkpoint (no '" + std::string(kCheckpointTag) + "' tag)");
-  }
-}
-
-GanSettings archive_settings(torch::serialize::InputArchive& archive, const std::string& path) {
-  c10::IValue text;
-  if (!archive.try_read("settings", text) || !text.isString()) {
-    throw Error(path + ": checkpoint has no settings");
-  }
-  return parse_gan_settings(text.toStringRef(), path + " (settings)");
-}
-
-long long archive_step(torch::serialize::InputArchive& archive, const std::string& path) {
-  torch::Tensor step;
-  if (!archive.try_read("step", step) || step.numel() != 1) throw Error(path + ": checkpoint has no step");
-  return step.item<int64_t>();
-}
-
-// Copies a stored tensor into `target` after checking its shape (torch's own read() would
-// silently take any shape).
-void read_into(torch::serialize::InputArchive& archive, const std::string& key,
-               torch::Tensor& target, const std::string& path) {
-  torch::Tensor stored;
-  if (!archive.try_read(key, stored)) throw Error(path + ": checkpoint lacks tensor '" + key + "'");
-  if (stored.sizes() != target.sizes()) {
-    std::ostringstream os;
-    os << path << ": tensor '" << key << "' has shape " << stored.sizes() << ", the model expects "
-       << target.sizes();
-    throw Error(os.str());
-  }
-  torch::NoGradGuard no_grad;
-  target.copy_(stored);
-}
 
 // The smallest 2^a 3^b 5^c >= n (lengths pocketfft and MKL transform fastest).
 int64_t fast_fft_length(int64_t n) {
@@ -106,6 +33,7 @@ int64_t fast_fft_length(int64_t n) {
 }  // namespace
 
 void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double fan) {
+  if (init == GanInit::kLoaded) return;
   torch::NoGradGuard no_grad;
   if (init == GanInit::kHe) {
     const double limit = std::sqrt(6.0 / fan);  // uniform, variance 2/fan (ReLU gain)
@@ -118,11 +46,25 @@ void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double
   torch::nn::init::zeros_(bias);
 }
 
+ConvParametersImpl::ConvParametersImpl(int in_channels, int out_channels, int kernel_length) {
+  weight = register_parameter("weight", torch::empty({out_channels, in_channels, kernel_length}));
+  bias = register_parameter("bias", torch::empty({out_channels}));
+}
+
+void ConvParametersImpl::draw_as_torch_conv1d() {
+  torch::NoGradGuard no_grad;
+  torch::nn::init::kaiming_uniform_(weight, std::sqrt(5.0));
+  const double fan_in = double(weight.size(1) * weight.size(2));
+  torch::nn::init::uniform_(bias, -1.0 / std::sqrt(fan_in), 1.0 / std::sqrt(fan_in));
+}
+
 SameConv1dImpl::SameConv1dImpl(int in_channels, int out_channels, int kernel_length, int stride,
                                GanInit init)
     : kernel_length_(kernel_length), stride_(stride) {
-  conv_ = register_module("conv", torch::nn::Conv1d(torch::nn::Conv1dOptions(in_channels, out_channels, kernel_length)
-                                                        .stride(stride).bias(true)));
+  conv_ = register_module("conv", ConvParameters(in_channels, out_channels, kernel_length));
+  if (init == GanInit::kLoaded) return;
+  // Conv1d's own draws, then ours over them: the random numbers every model so far was made with.
+  conv_->draw_as_torch_conv1d();
   init_layer(conv_->weight, conv_->bias, init, double(in_channels) * kernel_length);
 }
 
@@ -131,7 +73,8 @@ torch::Tensor SameConv1dImpl::forward_direct(const torch::Tensor& x) {
   const int64_t out = (length + stride_ - 1) / stride_;
   const int64_t pad_total = std::max<int64_t>((out - 1) * stride_ + kernel_length_ - length, 0);
   const int64_t left = pad_total / 2;
-  return conv_->forward(torch::constant_pad_nd(x, {left, pad_total - left}, 0.0));
+  return torch::conv1d(torch::constant_pad_nd(x, {left, pad_total - left}, 0.0), conv_->weight, conv_->bias,
+                       stride_);
 }
 
 torch::Tensor SameConv1dImpl::forward(const torch::Tensor& x) {
@@ -291,7 +234,7 @@ GeneratorImpl::GeneratorImpl(const GeneratorSpec& spec, GanInit init) {
     up_.push_back(register_module("upconv_" + std::to_string(i + 1),
                                   SameConvTranspose1d(up_channels[i][0], up_channels[i][1], kernel_length, 4, init)));
   }
-  if (residual_) {
+  if (residual_ && init != GanInit::kLoaded) {
     // The correction starts small but not zero: the last layer's initial weights are scaled down
     // 10x (-20 dB re a unit-RMS input), so a new residual generator is the identity within a small
     // random correction. Not exactly zero, because the translation has to ADD energy (room modes of
@@ -460,70 +403,6 @@ long long count_parameters(torch::nn::Module& module) {
   long long n = 0;
   for (const auto& p : module.parameters()) n += p.numel();
   return n;
-}
-
-void save_checkpoint(const std::string& path, const CycleGan& model, long long step) {
-  torch::serialize::OutputArchive archive;
-  archive.write("format", c10::IValue(std::string(kCheckpointTag)));
-  archive.write("settings", c10::IValue(gan_settings_text(model.settings)));
-  archive.write("step", torch::tensor(static_cast<int64_t>(step)));
-  // The networks are only read here; networks_of() serves both directions.
-  for (const auto& net : networks_of(const_cast<CycleGan&>(model))) {
-    for (const auto& item : net.module->named_parameters()) {
-      archive.write(archive_key(net.name, item.key()), item.value().detach().cpu());
-    }
-    if (!net.optimizer) continue;
-    const auto& ms = net.optimizer->mean_square();
-    for (size_t i = 0; i < ms.size(); ++i) {
-      archive.write(archive_key(net.name + "__rms", std::to_string(i)), ms[i].cpu());
-    }
-  }
-  const std::string temp = make_temp_path(path);
-  try {
-    archive.save_to(temp);
-  } catch (const std::exception& e) {
-    discard_temp_path(temp);
-    throw Error("cannot write checkpoint " + path + ": " + std::string(e.what()).substr(0, 200));
-  }
-  commit_temp_path(temp, path);
-}
-
-long long load_checkpoint(const std::string& path, CycleGan& model) {
-  torch::serialize::InputArchive archive;
-  open_archive(path, archive);
-  check_same_architecture(model.settings, archive_settings(archive, path), path);
-  for (const auto& net : networks_of(model)) {
-    for (auto& item : net.module->named_parameters()) {
-      read_into(archive, archive_key(net.name, item.key()), item.value(), path);
-    }
-    if (!net.optimizer) continue;
-    auto& ms = net.optimizer->mean_square();
-    for (size_t i = 0; i < ms.size(); ++i) {
-      read_into(archive, archive_key(net.name + "__rms", std::to_string(i)), ms[i], path);
-    }
-  }
-  return archive_step(archive, path);
-}
-
-GanSettings read_checkpoint_settings(const std::string& path) {
-  torch::serialize::InputArchive archive;
-  open_archive(path, archive);
-  return archive_settings(archive, path);
-}
-
-Generator load_generator(const std::string& path, const std::string& name, GeneratorWeights weights,
-                         GanSettings* settings, long long* step) {
-  torch::serialize::InputArchive archive;
-  open_archive(path, archive);
-  *settings = archive_settings(archive, path);
-  const bool average = weights == GeneratorWeights::kAverageWhereKept && settings->generator_average_decay > 0;
-  const std::string stored = average ? name + "_average" : name;
-  Generator generator = make_generator(*settings, GanInit::kGlorot);
-  for (auto& item : generator->named_parameters()) {
-    read_into(archive, archive_key(stored, item.key()), item.value(), path);
-  }
-  *step = archive_step(archive, path);
-  return generator;
 }
 
 }  // namespace gan

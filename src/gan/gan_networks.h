@@ -1,4 +1,4 @@
-// TS-RIRGAN networks, optimiser and checkpoints (LibTorch). Private to src/gan (and its unit
+// TS-RIRGAN networks and optimiser (LibTorch; their checkpoints: gan_checkpoint.h). Private to src/gan (and its unit
 // tests): nothing outside the GAN area may include torch.
 #pragma once
 #include <torch/torch.h>
@@ -20,7 +20,21 @@ namespace gan {
 // a generator's output starts near zero and does not depend on its input for hundreds of steps.
 // Biases start at zero. `fan` is the number of inputs summed into one output (in*k for a conv,
 // in*k/stride for the transposed conv), used by kHe only.
+// kLoaded leaves the layer as it is.
 void init_layer(torch::Tensor& weight, torch::Tensor& bias, GanInit init, double fan);
+
+// torch::nn::Conv1d's parameters under its names (weight [out, in, k], then bias [out]) without
+// its module: Conv1d's constructor draws them (Kaiming-uniform) with no way to skip it, and
+// SameConv1d's layers were Conv1d modules, so stored models keep their names ("conv.weight").
+class ConvParametersImpl : public torch::nn::Module {
+ public:
+  ConvParametersImpl(int in_channels, int out_channels, int kernel_length);
+  // The draws torch::nn::Conv1d's constructor makes (LibTorch 1.13 and 2.x: Kaiming-uniform with
+  // a = sqrt(5), then the bias uniform in +-1/sqrt(fan_in)), in its order.
+  void draw_as_torch_conv1d();
+  torch::Tensor weight, bias;
+};
+TORCH_MODULE(ConvParameters);
 
 // tf.layers.conv1d(padding='SAME'): out = ceil(L/s), pad_total = max((out-1)s + k - L, 0), the
 // smaller half on the left. Cross-correlation, bias, Glorot-uniform kernel, zero bias.
@@ -48,7 +62,7 @@ class SameConv1dImpl : public torch::nn::Module {
   bool fft_applies(const torch::Tensor& x) const;
   torch::Tensor correlate_by_fft(const torch::Tensor& padded, int64_t out_length);
   int kernel_length_, stride_;
-  torch::nn::Conv1d conv_{nullptr};
+  ConvParameters conv_{nullptr};
   // conj(rfft(weight, fft_length)) as [bins, in, out], and what it was computed from.
   torch::Tensor kernel_spectrum_;
   int64_t spectrum_fft_length_ = 0, spectrum_version_ = -1;
@@ -86,6 +100,20 @@ struct GeneratorSpec {
   static GeneratorSpec of(const GanSettings& settings);
 };
 
+// What one generator pass computes beside its output, for training's penalties. Returned, not
+// kept in the module, so that one generator can run on two threads at once (training's lanes,
+// gan_train.cc).
+struct GeneratorPass {
+  torch::Tensor output;  // [batch, 1, 16384]
+  // Band-gain generators: the log gains [batch, bands, knots] (nepers) (training penalises them,
+  // --gain-weight); undefined for the other kinds.
+  torch::Tensor log_gains;
+  // Residual and band-gain generators: the waveform correction's mean square per RIR [batch], in
+  // units of the input's mean square (training penalises it, --correction-weight); undefined for
+  // the original generator and for a pass without gradients (translation).
+  torch::Tensor correction_ms;
+};
+
 // G_SR / G_RS: 4 strided convs (w, 2w, 4w, 8w), 5 stride-1 convs (8w), 3 transposed convs
 // (16w, 8w, 4w for decoder "original"; 4w, 2w, w for "light") and a transposed conv to 1 channel;
 // ReLU elsewhere; no normalisation. Input and output [B, 1, 16384].
@@ -106,20 +134,6 @@ struct GeneratorSpec {
 // own band signals and predicted from the bottleneck's features: the whole band's levels (direct
 // sound, early energy, decay per band) can change while each input keeps its fine structure. Its
 // output is scaled to the input's peak (the discriminators see peak-normalised RIRs only).
-// What one generator pass computes beside its output, for training's penalties. Returned, not
-// kept in the module, so that one generator can run on two threads at once (training's lanes,
-// gan_train.cc).
-struct GeneratorPass {
-  torch::Tensor output;  // [batch, 1, 16384]
-  // Band-gain generators: the log gains [batch, bands, knots] (nepers) (training penalises them,
-  // --gain-weight); undefined for the other kinds.
-  torch::Tensor log_gains;
-  // Residual and band-gain generators: the waveform correction's mean square per RIR [batch], in
-  // units of the input's mean square (training penalises it, --correction-weight); undefined for
-  // the original generator and for a pass without gradients (translation).
-  torch::Tensor correction_ms;
-};
-
 class GeneratorImpl : public torch::nn::Module {
  public:
   explicit GeneratorImpl(const GeneratorSpec& spec, GanInit init = GanInit::kGlorot);
@@ -201,22 +215,6 @@ void set_torch_threads(int num_threads);
 // The torch device of --device (require_compute_device's Error when cuda cannot be used).
 torch::Device torch_device(ComputeDevice device);
 long long count_parameters(torch::nn::Module& module);
-
-// Checkpoint: one file with the settings text, the step, all four networks and the optimiser
-// state; written to a temporary name and renamed. CPU tensors, so any device can load it.
-void save_checkpoint(const std::string& path, const CycleGan& model, long long step);
-// Restores everything into `model` (which must have been built from matching settings) and
-// returns the step. Errors name the file: unreadable/corrupt, other width, missing tensors.
-long long load_checkpoint(const std::string& path, CycleGan& model);
-// The settings stored in a checkpoint (Error if the file is not a TS-RIRGAN checkpoint).
-GanSettings read_checkpoint_settings(const std::string& path);
-// Which of a generator's stored weights translate: the last step's, or the moving average where
-// the model keeps one (GanSettings::generator_average_decay > 0; the last step's otherwise).
-enum class GeneratorWeights { kLast, kAverageWhereKept };
-// Builds one generator ("g_real" or "g_synthetic") from a checkpoint's settings and weights;
-// fills *settings and *step.
-Generator load_generator(const std::string& path, const std::string& name, GeneratorWeights weights,
-                         GanSettings* settings, long long* step);
 
 }  // namespace gan
 }  // namespace tsrir

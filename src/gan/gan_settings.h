@@ -13,7 +13,9 @@ namespace tsrir {
 // table) are listed once, in the k...Names tables below: GanSettings::Register hands them to
 // RegisterEnum, and the settings file is written and read through those same Register calls
 // (util/settings_file.h), so a value is validated in one place.
-enum class GanInit { kGlorot, kHe };
+// kLoaded is not a setting (no name): a network built only to receive stored weights draws none
+// for its convolution layers (a band-gain head's torch::nn::Linear still draws in its constructor).
+enum class GanInit { kGlorot, kHe, kLoaded };
 enum class GanDecoder { kOriginal, kLight };
 enum class GanGenerator { kOriginal, kResidual, kBandGain };
 enum class GanActivation { kRelu, kLeakyRelu };

@@ -17,6 +17,7 @@
 #include "gan/gan_bfloat16.h"
 #include "gan/gan_input.h"
 #include "gan/gan_loss_plot.h"
+#include "gan/gan_checkpoint.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
@@ -206,7 +207,7 @@ class Trainer {
     if (m_.settings.generator_update == GanGeneratorUpdate::kJoint) {
       const int draws = 2 * m_.settings.disc_updates - 1;
       long long draw = (step_number - 1) * draws;
-      joint_step(draw++, &L);
+      joint_step(draw++, step_number, &L);
       for (int u = 1; u < m_.settings.disc_updates; ++u) {
         L.d_real = discriminator_step(m_.d_real, m_.g_real, m_.optimizers[2], draw++, true, "D_real");
         L.d_synthetic =
@@ -223,6 +224,7 @@ class Trainer {
     }
     generator_step(draw++, true, &L);
     generator_step(draw++, false, &L);
+    gan::update_generator_averages(m_, step_number);
     return L;
   }
 
@@ -311,7 +313,7 @@ class Trainer {
   // (GanCli.TwoThreadsTrainAsOne compares losses and translations). Each half then updates its own
   // discriminator, which reads no generator weight. So the halves can run at once on two threads
   // (--num-threads >= 2: lanes_), the generators stepped after both.
-  void joint_step(long long draw, StepLosses* L) {
+  void joint_step(long long draw, long long step_number, StepLosses* L) {
     auto [r, s] = batches(draw);
     // The identity halves also when only the gain identity asks for them (their L1 then has weight 0).
     const bool identity = m_.settings.identity_weight > 0 || m_.settings.identity_gain_weight > 0 ||
@@ -337,12 +339,24 @@ class Trainer {
     L->cycle_real = to_synthetic.cycle.item<double>(), L->cycle_synthetic = to_real.cycle.item<double>();
     L->gain_rms_db = to_real.gain_rms_db;
     L->d_real = to_real.d_loss, L->d_synthetic = to_synthetic.d_loss;
-    // The generators step once both losses are known to be finite.
+    // The generators step once both losses are known to be finite, each on a lane of its own (its
+    // two gradient halves added, RMSProp, its weight average): elementwise work on separate
+    // tensors, so the same arithmetic as one after the other.
     const size_t n_real = m_.optimizers[0].params().size();
-    std::vector<torch::Tensor> grads(to_real.grads.size());
-    for (size_t i = 0; i < grads.size(); ++i) grads[i] = sum_defined(to_real.grads[i], to_synthetic.grads[i]);
-    m_.optimizers[0].step(std::vector<torch::Tensor>(grads.begin(), grads.begin() + long(n_real)));
-    m_.optimizers[1].step(std::vector<torch::Tensor>(grads.begin() + long(n_real), grads.end()));
+    run_lanes([&] { step_generator(0, to_real.grads, to_synthetic.grads, 0, n_real, step_number); },
+              [&] { step_generator(1, to_real.grads, to_synthetic.grads, n_real, to_real.grads.size(), step_number); });
+  }
+
+  // Generator `which` (0: G_SR, 1: G_RS) stepped on the sum of the halves' gradients [begin, end),
+  // then its weight average (where the model keeps one) moved towards the new weights.
+  void step_generator(int which, const std::vector<torch::Tensor>& a, const std::vector<torch::Tensor>& b,
+                      size_t begin, size_t end, long long step_number) {
+    std::vector<torch::Tensor> grads;
+    for (size_t i = begin; i < end; ++i) grads.push_back(sum_defined(a[i], b[i]));
+    m_.optimizers[size_t(which)].step(grads);
+    gan::Generator& live = which == 0 ? m_.g_real : m_.g_synthetic;
+    gan::Generator& average = which == 0 ? m_.g_real_average : m_.g_synthetic_average;
+    if (average) gan::update_weight_average(*average, *live, m_.settings.generator_average_decay, step_number);
   }
 
   // One half of the joint step, into `own`'s domain: g (G_SR when real_side) translates `other`
@@ -724,9 +738,9 @@ class StepLoop {
         return;
       }
       const auto t0 = Clock::now();
+      // Trainer::step also moves the generators' weight averages.
       const StepLosses losses = trainer_.step(step_ + 1);
       ++step_;
-      gan::update_generator_averages(model_, step_);
       const double dt = std::chrono::duration<double>(Clock::now() - t0).count();
       total_step_s_ += dt;
       log << format_row(step_, losses, dt) << '\n' << std::flush;
@@ -761,6 +775,7 @@ class StepLoop {
       throw NonFiniteLoss("the generators after step " + std::to_string(step_) + " give outputs that are not finite");
     }
     gan::save_checkpoint(paths_.checkpoint, model_, step_);
+    gan::save_generator_files(paths_.checkpoint, model_, step_);
     checkpoint_step_ = step_;
   }
 
@@ -823,7 +838,8 @@ GanTrainResult train_ts_rirgan(const GanTrainOptions& o) {
                          load_domain(o.synthetic_list, "synthetic", o.model.batch_size, o.num_threads));
   // The model dir is the toolkit's: never one holding a user's files, never an input (its lists were
   // noted as inputs while loading the domains).
-  claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv"});
+  claim_output_dir(o.model_dir, {"settings.txt", "checkpoint.pt", "loss_log.csv", "generator-g_real.pt",
+                                 "generator-g_synthetic.pt"});
   torch::manual_seed(o.model.seed);
   CycleGan model(settings, device);
   const long long step = open_model(o, paths, model);

@@ -294,6 +294,59 @@ TEST_F(GanCli, WeightAverageLeavesTrainingAloneAndTranslates) {
   }
 }
 
+// Training writes each direction's translating generator beside the checkpoint, and gas-to-real
+// reads it instead of the whole checkpoint: the same translations byte for byte. A generator file
+// left from another checkpoint (another seed's, copied in) is noticed by the checkpoint's
+// fingerprint and ignored with a warning, as is a damaged one; --use-last-weights of an averaged model, which the file
+// does not hold, reads the checkpoint; a resumed run rewrites the files with its checkpoint.
+TEST_F(GanCli, GeneratorFilesTranslateAsTheCheckpoint) {
+  ASSERT_EQ(run(train("--steps=2", "m"), dir_).status, 0);
+  ASSERT_EQ(run(train("--steps=2 --seed=4", "other"), dir_).status, 0);
+  for (const std::string name : {"g_real", "g_synthetic"}) {
+    EXPECT_TRUE(fs::exists(dir_ + "/m/generator-" + name + ".pt")) << name;
+  }
+  // The checkpoint alone, and the checkpoint beside the other model's generator file.
+  for (const std::string copy : {"full", "stale"}) {
+    fs::create_directories(dir_ + "/" + copy);
+    for (const std::string f : {"checkpoint.pt", "settings.txt"}) fs::copy_file(dir_ + "/m/" + f, dir_ + "/" + copy + "/" + f);
+  }
+  fs::copy_file(dir_ + "/other/generator-g_real.pt", dir_ + "/stale/generator-g_real.pt");
+  auto translate = [&](const std::string& model, const std::string& extra, const std::string& out) {
+    RunResult t = run(kBin + "/gas-to-real --model=" + dir_ + "/" + model + " " + extra + " " + synthetic_ + " " +
+                          dir_ + "/" + out, dir_);
+    EXPECT_EQ(t.status, 0) << t.err;
+    return t.err;
+  };
+  EXPECT_NE(translate("m", "", "t_file").find("from " + dir_ + "/m/generator-g_real.pt"), std::string::npos);
+  EXPECT_NE(translate("full", "", "t_full").find("from " + dir_ + "/full/checkpoint.pt"), std::string::npos);
+  const std::string stale = translate("stale", "", "t_stale");
+  EXPECT_NE(stale.find("was written for another checkpoint"), std::string::npos) << stale;
+  EXPECT_NE(stale.find("from " + dir_ + "/stale/checkpoint.pt"), std::string::npos) << stale;
+  translate("other", "", "t_other");
+  EXPECT_NE(translate("m", "--direction=real-to-synthetic", "r_file").find("generator-g_synthetic.pt"), std::string::npos);
+  translate("full", "--direction=real-to-synthetic", "r_full");
+  { std::ofstream(dir_ + "/stale/generator-g_synthetic.pt") << "not an archive"; }  // a damaged file
+  const std::string damaged = translate("stale", "--direction=real-to-synthetic", "r_damaged");
+  EXPECT_NE(damaged.find("generator-g_synthetic.pt"), std::string::npos) << damaged;
+  EXPECT_NE(damaged.find("reading the checkpoint instead"), std::string::npos) << damaged;
+  EXPECT_NE(translate("m", "--use-last-weights", "t_last").find("from " + dir_ + "/m/checkpoint.pt"), std::string::npos);
+  for (const std::string id : {"syn_0", "syn_3"}) {
+    const std::string full = slurp(dir_ + "/t_full/" + id + ".wav");
+    ASSERT_FALSE(full.empty());
+    EXPECT_EQ(slurp(dir_ + "/t_file/" + id + ".wav"), full) << id;
+    EXPECT_EQ(slurp(dir_ + "/t_stale/" + id + ".wav"), full) << id;
+    EXPECT_NE(slurp(dir_ + "/t_other/" + id + ".wav"), full) << id;  // so the stale file would have shown
+    EXPECT_NE(slurp(dir_ + "/t_last/" + id + ".wav"), full) << id;
+    EXPECT_EQ(slurp(dir_ + "/r_file/" + id + ".wav"), slurp(dir_ + "/r_full/" + id + ".wav")) << id;
+    EXPECT_EQ(slurp(dir_ + "/r_damaged/" + id + ".wav"), slurp(dir_ + "/r_full/" + id + ".wav")) << id;
+  }
+  ASSERT_EQ(run(train("--steps=3 --resume", "m"), dir_).status, 0);
+  const std::string resumed = translate("m", "", "t_resumed");
+  EXPECT_NE(resumed.find("step 3"), std::string::npos) << resumed;
+  EXPECT_NE(resumed.find("generator-g_real.pt"), std::string::npos) << resumed;
+  EXPECT_EQ(resumed.find("another checkpoint"), std::string::npos) << resumed;
+}
+
 // --print-settings prints the settings.txt that training with the same options writes, byte for
 // byte (what the chosen generator does not use zeroed as training zeroes it), and leaves the model
 // dir alone: run_table2.sh checks a model trained elsewhere against it.

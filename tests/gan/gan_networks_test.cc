@@ -2,6 +2,8 @@
 // TensorFlow definitions (docs/reference/spec-digest.md §3.7), plus parameter counts, optimiser and checkpoints.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -16,6 +18,7 @@
 
 #include "gan/gan_bfloat16.h"
 #include "gan/gan_binwise_product.h"
+#include "gan/gan_checkpoint.h"
 #include "gan/gan_networks.h"
 #include "gan/gan_runtime.h"
 #include "gan/gan_tensor_allocator.h"
@@ -129,6 +132,46 @@ TEST(GanLayers, SameConvMatchesTensorFlowDefinition) {
 // place (an optimiser step) or replaced (a checkpoint load), the FFT form still equals the new
 // direct form; and a layer whose weights were made under InferenceMode (no version counter)
 // takes the direct form, bit for bit.
+// SameConv1d's layers were torch::nn::Conv1d modules until 2026-12-05; their parameters now live in
+// ConvParameters, which draws what Conv1d's constructor drew, in its order, so that a seed gives the
+// models it gave before (and every fidelity run stands). Checked against LibTorch's own Conv1d; and
+// a generator built to receive stored weights (GanInit::kLoaded) draws none for its layers.
+TEST(GanLayers, ConvParametersDrawAsTorchConv1dAndLoadedGeneratorsDrawNothing) {
+  for (const auto& [in, out, k] : {std::tuple{1, 4, 25}, std::tuple{16, 32, 25}, std::tuple{3, 5, 7}}) {
+    torch::manual_seed(11);
+    torch::nn::Conv1d reference(torch::nn::Conv1dOptions(in, out, k));
+    const torch::Tensor after_reference = torch::rand({4});
+    torch::manual_seed(11);
+    ConvParameters drawn(in, out, k);
+    drawn->draw_as_torch_conv1d();
+    EXPECT_TRUE(torch::equal(drawn->weight, reference->weight)) << in << " " << out << " " << k;
+    EXPECT_TRUE(torch::equal(drawn->bias, reference->bias)) << in << " " << out << " " << k;
+    EXPECT_TRUE(torch::equal(torch::rand({4}), after_reference));  // the same number of draws
+    ASSERT_EQ(drawn->named_parameters().keys(), reference->named_parameters().keys());
+  }
+  GanSettings settings;
+  settings.width = 4;
+  settings.generator = GanGenerator::kResidual;
+  settings.correction_max_hz = 500;
+  torch::manual_seed(12);
+  const torch::Tensor first = torch::rand({4});
+  torch::manual_seed(12);
+  make_generator(settings, GanInit::kLoaded);
+  EXPECT_TRUE(torch::equal(torch::rand({4}), first)) << "a generator built for stored weights drew random numbers";
+  // A band-gain generator's head is a torch::nn::Linear, whose constructor draws (0.3 % of the
+  // weights at width 64): exactly that, nothing more.
+  settings.generator = GanGenerator::kBandGain;
+  torch::manual_seed(12);
+  BandGain(8 * settings.width);
+  const torch::Tensor after_head = torch::rand({4});
+  torch::manual_seed(12);
+  make_generator(settings, GanInit::kLoaded);
+  EXPECT_TRUE(torch::equal(torch::rand({4}), after_head));
+  torch::manual_seed(12);
+  make_generator(settings, GanInit::kHe);
+  EXPECT_FALSE(torch::equal(torch::rand({4}), first));
+}
+
 TEST(GanLayers, FftSameConvEqualsTheDirectForm) {
   torch::manual_seed(31);
   for (int kernel : {25, 9}) {
