@@ -12,10 +12,13 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 export BUILD_DIR=${BUILD_DIR:-$root/build}
 "$root/utils/bootstrap.sh"
+# The machine's cores: nproc honours OMP_NUM_THREADS, and with the export below (or a caller's) it
+# said 1, so every test and the sanitizer build ran one at a time (until 2026-12-07).
+cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
 # Torch and OpenBLAS would each start one thread per core inside every test process.
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 status=0
-ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$(nproc)" "$@" || status=$?
+ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$cores" "$@" || status=$?
 
 if [ "${TSRIR_SANITIZER_STAGE:-1}" != 0 ]; then
   asan_dir=${ASAN_BUILD_DIR:-$root/build-asan}
@@ -31,7 +34,7 @@ if [ "${TSRIR_SANITIZER_STAGE:-1}" != 0 ]; then
     grep -qx "$t" <<<"$known" && targets+=("$t")
   done
   replays=$(grep -x 'fuzz_replay_[a-z_]*' <<<"$known" || true)
-  ninja -C "$asan_dir" -j "${TSRIR_BUILD_JOBS:-$(nproc)}" "${targets[@]}" $replays >&2
+  ninja -C "$asan_dir" -j "${TSRIR_BUILD_JOBS:-$cores}" "${targets[@]}" $replays >&2
   # Leaks inside system libraries on malformed input (listed there, with why) are not ours.
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -40,7 +43,7 @@ if [ "${TSRIR_SANITIZER_STAGE:-1}" != 0 ]; then
     echo "run_tests: [sanitized] $t" >&2
     "$asan_dir/bin/$t" --gtest_brief=1 || { echo "run_tests: [sanitized] $t FAILED" >&2; status=1; }
   done
-  ctest --test-dir "$asan_dir" --output-on-failure -j "$(nproc)" -L sanitize -R '^robustness\.fuzz_replay\.' || status=1
+  ctest --test-dir "$asan_dir" --output-on-failure -j "$cores" -L sanitize -R '^robustness\.fuzz_replay\.' || status=1
   echo "run_tests: sanitizer stage took $(( $(date +%s) - start )) s" >&2
 fi
 exit $status

@@ -75,36 +75,28 @@ long long archive_step(torch::serialize::InputArchive& archive, const std::strin
   return step.item<int64_t>();
 }
 
-// Copies a stored tensor into `target` after checking its shape (torch's own read() would
-// silently take any shape).
-void read_into(torch::serialize::InputArchive& archive, const std::string& key,
-               torch::Tensor& target, const std::string& path) {
-  torch::Tensor stored;
-  if (!archive.try_read(key, stored)) throw Error(path + ": lacks tensor '" + key + "'");
-  if (stored.sizes() != target.sizes()) {
-    std::ostringstream os;
-    os << path << ": tensor '" << key << "' has shape " << stored.sizes() << ", the model expects "
-       << target.sizes();
-    throw Error(os.str());
-  }
-  torch::NoGradGuard no_grad;
-  target.copy_(stored);
-}
-
-// read_into without the copy: `target` takes the stored tensor's memory (a generator file's
-// parameters are not shared with anything else; saves writing, and first touching, 166 MB at width 64).
-void adopt_stored(torch::serialize::InputArchive& archive, const std::string& key, torch::Tensor& target,
-                  const std::string& path) {
+// The stored tensor under `key`, checked against the model's `target` (torch's own read() would
+// silently take any shape, and copy_() any type).
+torch::Tensor checked_stored(torch::serialize::InputArchive& archive, const std::string& key,
+                             const torch::Tensor& target, const std::string& path) {
   torch::Tensor stored;
   if (!archive.try_read(key, stored)) throw Error(path + ": lacks tensor '" + key + "'");
   if (stored.sizes() != target.sizes() || stored.scalar_type() != target.scalar_type()) {
     std::ostringstream os;
-    os << path << ": tensor '" << key << "' is " << stored.scalar_type() << " " << stored.sizes() << ", the model expects "
-       << target.scalar_type() << " " << target.sizes();
+    os << path << ": tensor '" << key << "' is " << stored.scalar_type() << " " << stored.sizes()
+       << ", the model expects " << target.scalar_type() << " " << target.sizes();
     throw Error(os.str());
   }
+  return stored;
+}
+
+// Copies into `target`: for tensors whose memory others already hold (optimiser state, modules
+// built by the trainer).
+void read_into(torch::serialize::InputArchive& archive, const std::string& key, torch::Tensor& target,
+               const std::string& path) {
+  torch::Tensor stored = checked_stored(archive, key, target, path);
   torch::NoGradGuard no_grad;
-  target.set_data(stored.contiguous());
+  target.copy_(stored);
 }
 
 // The stored weights `weights` asks for: the moving average's name where the model keeps one.
@@ -122,6 +114,18 @@ void write_archive(torch::serialize::OutputArchive& archive, const std::string& 
     throw Error(std::string("cannot write ") + what + " " + path + ": " + std::string(e.what()).substr(0, 200));
   }
   commit_temp_path(temp, path);
+}
+
+// A fresh generator whose parameters take the stored tensors' memory (nothing else holds a
+// loaded generator's parameters; saves writing, and first touching, 166 MB at width 64).
+Generator generator_from_archive(torch::serialize::InputArchive& archive, const GanSettings& settings,
+                                 const std::string& stored, const std::string& path) {
+  Generator generator = make_generator(settings, GanInit::kLoaded);
+  torch::NoGradGuard no_grad;
+  for (auto& item : generator->named_parameters()) {
+    item.value().set_data(checked_stored(archive, archive_key(stored, item.key()), item.value(), path).contiguous());
+  }
+  return generator;
 }
 
 // The generator from the file beside the checkpoint, or nothing when it is absent, holds other
@@ -144,10 +148,7 @@ Generator read_generator_file(const std::string& checkpoint, const std::string& 
   }
   const GanSettings file_settings = archive_settings(archive, path);
   if (stored.toStringRef() != stored_name(name, weights, file_settings)) return nullptr;  // e.g. --use-last-weights
-  Generator generator = make_generator(file_settings, GanInit::kLoaded);
-  for (auto& item : generator->named_parameters()) {
-    adopt_stored(archive, archive_key(stored.toStringRef(), item.key()), item.value(), path);
-  }
+  Generator generator = generator_from_archive(archive, file_settings, stored.toStringRef(), path);
   *settings = file_settings;
   *step = archive_step(archive, path);
   return generator;
@@ -237,11 +238,7 @@ Generator load_generator(const std::string& path, const std::string& name, Gener
   torch::serialize::InputArchive archive;
   open_archive(path, archive);
   *settings = archive_settings(archive, path);
-  const std::string stored = stored_name(name, weights, *settings);
-  Generator generator = make_generator(*settings, GanInit::kLoaded);
-  for (auto& item : generator->named_parameters()) {
-    read_into(archive, archive_key(stored, item.key()), item.value(), path);
-  }
+  Generator generator = generator_from_archive(archive, *settings, stored_name(name, weights, *settings), path);
   *step = archive_step(archive, path);
   if (read_from) *read_from = path;
   return generator;

@@ -127,8 +127,9 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
   read_options.target_rate_hz = kGanSampleRateHz;
   size_t cropped = 0;
   c10::InferenceMode inference;
-  // The RIRs in groups of one size, at most --batch-size: 170 at 32 are 6 groups of 29, not 5 of 32
-  // and one of 10 padded to 32 (the padding rows cost as much as real ones).
+  // The RIRs in groups of one size, at most --batch-size: 170 at 32 are 6 groups of 29 (the last
+  // holds 25 and is padded with 4 silent rows), not 5 of 32 and one of 10 padded with 22 (a padding
+  // row costs as much as a real one).
   const size_t groups = (refs.size() + size_t(o.batch_size) - 1) / size_t(o.batch_size);
   const size_t group_size = (refs.size() + groups - 1) / groups;
   // Every channel of a multichannel RIR (a microphone array's) is a row of its own.
@@ -154,9 +155,9 @@ GanTranslateResult translate_rirs(const GanTranslateOptions& o) {
         cropped += in.cropped;
       }
     }
-    // A short pass (a multichannel group's last) is padded with silent rows to the group size: a
-    // new input shape makes oneDNN create (JIT-compile) every layer's kernels again. Rows do not
-    // interact (no batch statistics in the generator).
+    // A short pass (the last group's, or a multichannel group's last) is padded with silent rows
+    // to the group size: a new input shape makes oneDNN create (JIT-compile) every layer's kernels
+    // again. Rows do not interact (no batch statistics in the generator).
     const bool pad = groups > 1 || rows.size() > group_size;
     const std::vector<std::vector<float>> outputs = generate_rows(generator, rows, group_size, pad, device, dtype);
     size_t row = 0;
