@@ -38,7 +38,7 @@ run_one() {  # <label> <build> <level|null> <seed>
 }
 export -f run_one
 export tmp
-xargs -P "${JOBS:-$(nproc)}" -L 1 bash -c 'run_one "$@"' _ < "$tmp/jobs"
+xargs -P "${JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}" -L 1 bash -c 'run_one "$@"' _ < "$tmp/jobs"
 cat "$tmp"/res.* > "$tmp/all"
 echo
 header="| build | null sets reporting room_modes |"

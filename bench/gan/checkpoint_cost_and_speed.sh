@@ -10,14 +10,8 @@ here=$(cd "$(dirname "$0")/../.." && pwd)
 bin=${1:-$here/build/bin}
 command -v strace > /dev/null || { echo "needs strace" >&2; exit 1; }
 source "$here/bench/gan/speed_lib.sh"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-r3vival_scp "$here/../shared/data/rirs/r3vival"
-n=$(wc -l < "$work/rir.scp")
-cpu() { grep -m1 "$1" /proc/cpuinfo | cut -d: -f2 | xargs; }
-echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, $(cpu 'model name'), family $(cpu 'cpu family')" \
-  "model $(cpu '^model\s'); $bin; git $(git -C "$here" rev-parse --short HEAD)"
-echo "# load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+bench_setup
+bench_header "$bin"
 strace -f --seccomp-bpf -tt -e trace=openat,rename,renameat,renameat2 -o "$work/strace.txt" \
   "$bin/ts-rirgan-train" --real="$work/rir.scp" --synthetic="$work/rir.scp" --width=64 --batch-size=4 --steps=3 \
   --num-threads=2 --checkpoint-every=100000 --progress-interval=60 "$work/m64" 2> "$work/train64.log"

@@ -10,10 +10,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 prev=$1; new=$2; rounds=${3:-3}
 source "$here/bench/gan/speed_lib.sh"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-r3vival_scp "$here/../shared/data/rirs/r3vival"
-n=$(wc -l < "$work/rir.scp")
+bench_setup
 echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "# previous: $prev; new: $new; load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 "$new/ts-rirgan-train" --real="$work/rir.scp" --synthetic="$work/rir.scp" --width=64 --batch-size=4 --steps=3 \

@@ -1,5 +1,15 @@
-# Shared by bench/gan/compare_builds.sh and checkpoint_cost_and_speed.sh (sourced; `work` and `n`
-# set by the caller): the bench set, a training step's median and one measured gas-to-real run.
+# Shared by bench/gan's speed scripts (sourced): their work directory and bench set, a training
+# step's median, one measured gas-to-real run and the run's header lines.
+
+# A temporary $work (removed at exit) holding the bench set, $n its RIRs.
+bench_setup() {
+  local here
+  here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  r3vival_scp "$here/../shared/data/rirs/r3vival"
+  n=$(wc -l < "$work/rir.scp")
+}
 
 # The 170 measured R3VIVAL RIRs (48 kHz, resampled by the programs) as a Kaldi list in $work.
 r3vival_scp() {
@@ -23,4 +33,17 @@ translate_row() {
   echo "$label: gas-to-real width 64, batch $batch: whole process $wall s ($(awk -v w="$wall" -v n="$n" \
     'BEGIN{printf "%.1f", n / w}') RIRs/s), user $user s, sys $sys s, peak RSS $((rss / 1024)) MB;" \
     "$(grep -o 'model load [0-9.e-]* s, [0-9.]* RIRs/s' "$work/log")"
+}
+
+# The run's first two lines: when, where (cores without OMP_NUM_THREADS, which nproc honours; CPU
+# model, family and model number), which programs and commit (-dirty: with uncommitted changes); the
+# load average before.
+bench_header() {
+  local bin=$1 here
+  here=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+  cpu_field() { grep -m1 "$1" /proc/cpuinfo | cut -d: -f2 | xargs; }
+  echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc) cores," \
+    "$(cpu_field 'model name'), family $(cpu_field 'cpu family') model $(cpu_field '^model\s'); $bin;" \
+    "git $(git -C "$here" describe --always --dirty)"
+  echo "# load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 }

@@ -73,10 +73,12 @@ gan_device=cpu
 gan_opts=""           # extra ts-rirgan-train options (default: the program's defaults, which pass the
                       # translation-fidelity suite (bench/RESULTS.md); the paper's exact training: "--config=../../conf/ts-rirgan-paper.conf",
                       # the defaults before 2026-12-04: "--config=../../conf/ts-rirgan-residual.conf")
-gan_num_threads=""    # default: --num-threads (the demo: 1; LibTorch threads on a busy 2-core machine
-                      # spin-wait: 2 threads measured ~10x slower than 1 under load, when 2 threads
-                      # split each operator; since 2026-12-05 ts-rirgan-train runs its step's two
-                      # halves on one thread each, the same model as 1 thread, not re-measured under load)
+gan_num_threads=""    # default: --num-threads. Until 2026-12-07 the demo used 1: when 2 LibTorch threads
+                      # split each operator they spin-waited on a busy 2-core machine (~10x slower than 1).
+                      # Since 2026-12-05 ts-rirgan-train runs its step's two halves on one thread each,
+                      # the same model as 1 thread (tests/gan GanCli.TwoThreadsTrainAsOne); beside two
+                      # other trainings, width 8, batch 4: 0.43-0.46 s/step at 2 threads, 0.58-0.68 at 1
+                      # (bench/gan/demo_threads.sh; bench/RESULTS.md, "The demo's GAN training on 2 threads")
 metrics_definition=irstats
 snrs=1..2             # SNR range lo..hi dB (reverberate-data --background-snrs; Kaldi lists a:b:c work too)
 write_wavs=false      # far-field dirs: pipes in wav.scp (Kaldi's way) or 16-bit wavs
@@ -131,7 +133,7 @@ for ((i = 1; i < $#; i++)); do
 done
 if [ "$demo" = true ]; then
   data=demo/data; exp=demo/exp; results=demo/RESULTS.md
-  nj=2; num_threads=2; gan_num_threads=1; write_wavs=true
+  nj=2; num_threads=2; write_wavs=true
   # The program's defaults (the configuration that passes tests/gan's translation-fidelity suite,
   # issue 34); ts-rirgan-train stops with an error if its generator collapses.
   gan_opts=""

@@ -36,28 +36,47 @@ torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& win
   return torch::log10(energy / peak + floor) * 0.5;  // 10 log10(.) / 20 dB
 }
 
-EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init) {
+EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init, EnvelopeCriticKind kind)
+    : kind_(kind) {
+  // Separable: each layer's channels are the bands' own groups, half the joint form's channels in
+  // each band (5.5x the joint form's in all; the joint form's in each would be 11x).
+  const int64_t groups = kind == EnvelopeCriticKind::kSeparable ? kBandGainBands : 1;
   int64_t in = kBandGainBands, frames = frame_count(slice_length);
   for (int i = 0; i < kEnvelopeLayers; ++i) {
-    const int64_t out = int64_t(width) << (i + 1);
+    const int64_t out = groups == 1 ? int64_t(width) << (i + 1) : groups * (int64_t(width) << i);
     // Stride 2, padding k/2: ceil(F / 2) frames out, 'same' as the waveform critic's layers.
     auto conv = torch::nn::Conv1d(
-        torch::nn::Conv1dOptions(in, out, kEnvelopeKernel).stride(2).padding(kEnvelopeKernel / 2));
-    init_layer(conv->weight, conv->bias, init, double(in) * kEnvelopeKernel);
+        torch::nn::Conv1dOptions(in, out, kEnvelopeKernel).stride(2).padding(kEnvelopeKernel / 2).groups(groups));
+    init_layer(conv->weight, conv->bias, init, double(in / groups) * kEnvelopeKernel);
     down_.push_back(register_module("envelope_conv_" + std::to_string(i), conv));
     in = out;
     frames = (frames + 1) / 2;
   }
-  output_ = register_module("envelope_output", torch::nn::Linear(in * frames, 1));
-  init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
+  if (kind == EnvelopeCriticKind::kJoint) {
+    output_ = register_module("envelope_output", torch::nn::Linear(in * frames, 1));
+    init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
+  } else {
+    // A band's linear logit of all its channels and frames: a grouped convolution as long as the frames.
+    band_output_ = register_module("envelope_band_output",
+                                   torch::nn::Conv1d(torch::nn::Conv1dOptions(in, groups, frames).groups(groups)));
+    init_layer(band_output_->weight, band_output_->bias, GanInit::kGlorot, 0.0);
+  }
   window_ = register_buffer("envelope_window", envelope_window());
   responses_ = register_buffer("envelope_band_responses", envelope_band_responses());
 }
 
 torch::Tensor EnvelopeCriticImpl::forward(const torch::Tensor& x) {
-  torch::Tensor h = band_log_envelope(x, window_, responses_).to(x.scalar_type());
+  return logit_of_levels(band_log_envelope(x, window_, responses_).to(x.scalar_type()));
+}
+
+torch::Tensor EnvelopeCriticImpl::logit_of_levels(const torch::Tensor& levels) {
+  torch::Tensor h = levels;
   for (auto& layer : down_) h = torch::leaky_relu(layer->forward(h), 0.2);
-  return output_->forward(h.flatten(1)).squeeze(1);
+  if (kind_ == EnvelopeCriticKind::kJoint) return output_->forward(h.flatten(1)).squeeze(1);
+  // The bands' mean, not their sum: RMSProp moves every weight about as far per step whatever its
+  // gradient, and this last layer has 5.5x the joint one's inputs, so a sum moved the logit ~5x
+  // further per step (on R3VIVAL its discriminator losses ran 10-50x the joint critic's; bench/RESULTS.md).
+  return band_output_->forward(h).flatten(1).mean(1);  // [batch, bands, 1] -> [batch]
 }
 
 }  // namespace gan

@@ -18,6 +18,16 @@
 // the RIR (an RIR's level says nothing: the map is the same at any gain) and the floor 80 dB below
 // it. A small stack of strided convolutions over the frames (the bands as channels) reads it to one
 // logit, which the discriminator adds to its waveform logit (a departure; the paper has none).
+//
+// kSeparable (--disc-view=waveform+separable-envelope; issue 34 item 3's experiment, not the
+// default): the same stack with every layer grouped by band (each band's own channels, never
+// another's) and a linear output per band, the logit the mean of the 11 bands'. Why: through the
+// joint critic's cross-band view a real domain whose high bands decay faster can be imitated by
+// raising the mid band's tail, which the fidelity suite's failing decay seeds and the R3VIVAL
+// translators do (bench/RESULTS.md, "The decay kind's mid-band drift comes through the envelope
+// critic's cross-band view"). Measuring each band re its own loudest frame (tried there, not
+// landed) took that view away but also the low band's level re the rest; here every band keeps the
+// RIR's loudest cell as its reference, and only the critic's reading is separated.
 #pragma once
 #include <torch/torch.h>
 
@@ -42,14 +52,21 @@ torch::Tensor envelope_band_responses();
 // device; differentiable, float32.
 torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& window, const torch::Tensor& responses);
 
+enum class EnvelopeCriticKind { kJoint, kSeparable };
+
 class EnvelopeCriticImpl : public torch::nn::Module {
  public:
-  EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init);
+  EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init,
+                     EnvelopeCriticKind kind = EnvelopeCriticKind::kJoint);
   torch::Tensor forward(const torch::Tensor& x);  // x [batch, 1, slice] -> logit [batch]
+  // The logit of band levels [batch, bands, frames] as band_log_envelope makes them.
+  torch::Tensor logit_of_levels(const torch::Tensor& levels);
 
  private:
+  EnvelopeCriticKind kind_;
   std::vector<torch::nn::Conv1d> down_;
-  torch::nn::Linear output_{nullptr};
+  torch::nn::Linear output_{nullptr};     // kJoint
+  torch::nn::Conv1d band_output_{nullptr};  // kSeparable: each band's channels x frames to its logit
   torch::Tensor window_, responses_;  // buffers (not in checkpoints, which hold parameters only)
 };
 TORCH_MODULE(EnvelopeCritic);

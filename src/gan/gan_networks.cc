@@ -338,7 +338,11 @@ DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init,
   // The linear logit keeps Glorot under either init (no ReLU follows it).
   init_layer(output_->weight, output_->bias, GanInit::kGlorot, 0.0);
   // Built after the waveform layers, so those draw the same initial weights with either view.
-  if (view == GanDiscView::kWaveformEnvelope) envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init));
+  if (view != GanDiscView::kWaveform) {
+    const EnvelopeCriticKind kind =
+        view == GanDiscView::kWaveformSeparableEnvelope ? EnvelopeCriticKind::kSeparable : EnvelopeCriticKind::kJoint;
+    envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init, kind));
+  }
 }
 
 torch::Tensor DiscriminatorImpl::forward(torch::Tensor x) {

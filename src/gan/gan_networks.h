@@ -155,7 +155,8 @@ TORCH_MODULE(Generator);
 // D_R / D_S (WaveGAN): 5 stride-4 convs (w .. 16w) with LeakyReLU 0.2, flatten in TF's
 // [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
 // view kWaveformEnvelope (a departure): plus gan_band_envelope.h's critic of the band levels in
-// dB, whose logit is added to the waveform's.
+// dB, whose logit is added to the waveform's; kWaveformSeparableEnvelope: the same with that critic's
+// per-band form (one critic per band, their logits averaged).
 class DiscriminatorImpl : public torch::nn::Module {
  public:
   DiscriminatorImpl(int width, int kernel_length, GanInit init = GanInit::kGlorot,

@@ -21,7 +21,7 @@ enum class GanGenerator { kOriginal, kResidual, kBandGain };
 enum class GanActivation { kRelu, kLeakyRelu };
 enum class GanGeneratorUpdate { kSequential, kJoint };
 enum class GanDiscAugment { kNone, kShiftGainPolarity };
-enum class GanDiscView { kWaveform, kWaveformEnvelope };
+enum class GanDiscView { kWaveform, kWaveformEnvelope, kWaveformSeparableEnvelope };
 enum class GanPrecision { kFloat32, kBfloat16 };
 
 inline const Choices<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
@@ -35,7 +35,9 @@ inline const Choices<GanGeneratorUpdate> kGanGeneratorUpdateNames = {
 inline const Choices<GanDiscAugment> kGanDiscAugmentNames = {
     {"none", GanDiscAugment::kNone}, {"shift-gain-polarity", GanDiscAugment::kShiftGainPolarity}};
 inline const Choices<GanDiscView> kGanDiscViewNames = {
-    {"waveform", GanDiscView::kWaveform}, {"waveform+envelope", GanDiscView::kWaveformEnvelope}};
+    {"waveform", GanDiscView::kWaveform},
+    {"waveform+envelope", GanDiscView::kWaveformEnvelope},
+    {"waveform+separable-envelope", GanDiscView::kWaveformSeparableEnvelope}};
 inline const Choices<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
                                                          {"bfloat16", GanPrecision::kBfloat16}};
 

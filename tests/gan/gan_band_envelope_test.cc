@@ -2,8 +2,8 @@
 // levels are known by construction in another formulation: two noises decaying at their own
 // rates, one low-passed and one high-passed by time-domain recursions written here (not the
 // view's FFT band split), must show each band's own decay rate in dB per second; the map is the
-// same at any gain; and a discriminator with the view keeps the waveform critic's weights and adds
-// the envelope critic's logit.
+// same at any gain; a discriminator with the view keeps the waveform critic's weights and adds
+// the envelope critic's logit; and the separable critic's logit has no term in which two bands meet.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -127,18 +127,26 @@ TEST(BandEnvelope, ALateLevelChangeReachesTheCriticsGradient) {
   }
 }
 
-TEST(BandEnvelope, DiscriminatorWithTheViewAddsTheEnvelopeCritic) {
-  torch::manual_seed(5);
-  Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
-  torch::manual_seed(5);
-  Discriminator both(4, 25, GanInit::kHe, GanDiscView::kWaveformEnvelope);
-  // The waveform layers draw the same initial weights with either view.
-  const auto p = plain->named_parameters(), q = both->named_parameters();
+namespace {
+// The waveform layers of a discriminator with an envelope view draw the same initial weights as one
+// without (the envelope critic is built after them).
+void expect_waveform_weights_kept(Discriminator& plain, Discriminator& with_view) {
+  const auto p = plain->named_parameters(), q = with_view->named_parameters();
   for (const auto& item : p) {
     ASSERT_TRUE(q.contains(item.key())) << item.key();
     EXPECT_TRUE(torch::equal(item.value(), q[item.key()])) << item.key();
   }
   EXPECT_GT(q.size(), p.size());
+}
+}  // namespace
+
+TEST(BandEnvelope, DiscriminatorWithTheViewAddsTheEnvelopeCritic) {
+  torch::manual_seed(5);
+  Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
+  torch::manual_seed(5);
+  Discriminator both(4, 25, GanInit::kHe, GanDiscView::kWaveformEnvelope);
+  expect_waveform_weights_kept(plain, both);
+  auto q = both->named_parameters();
   // And its logit is the waveform's plus the envelope critic's.
   torch::NoGradGuard no_grad;
   const torch::Tensor x = torch::randn({3, 1, kLength}) * 0.1;
@@ -148,4 +156,58 @@ TEST(BandEnvelope, DiscriminatorWithTheViewAddsTheEnvelopeCritic) {
   const torch::Tensor before = both->forward(x);
   q["envelope.envelope_output.bias"].add_(0.25);
   EXPECT_LT((both->forward(x) - before - 0.25).abs().max().item<double>(), 1e-5);
+}
+
+namespace {
+// The interaction of a change in band a with one in band b on a critic's logit of band levels:
+// f(L + da + db) - f(L + da) - f(L + db) + f(L), as a fraction of |f(L + da) - f(L)| (the change's
+// own effect), at levels L drawn in the map's range [-4, 0] (units of 20 dB) away from any shared
+// reference: the critic is given the levels, not a waveform.
+double band_interaction(EnvelopeCritic& critic, uint32_t seed) {
+  torch::manual_seed(seed);
+  const int64_t frames = (kLength - kEnvelopeFrameLength) / kEnvelopeHop + 1;
+  const torch::Tensor levels = -4.0 * torch::rand({4, kBandGainBands, frames});
+  torch::Tensor da = torch::zeros_like(levels), db = torch::zeros_like(levels);
+  da.select(1, 2).narrow(1, 20, 60).fill_(0.5);   // band 2, 160-640 ms: 10 dB up
+  db.select(1, 8).narrow(1, 30, 60).fill_(-0.5);  // band 8, 240-720 ms: 10 dB down
+  torch::NoGradGuard no_grad;
+  const torch::Tensor f0 = critic->logit_of_levels(levels), fa = critic->logit_of_levels(levels + da);
+  const torch::Tensor fb = critic->logit_of_levels(levels + db), fab = critic->logit_of_levels(levels + da + db);
+  return ((fab - fa - fb + f0).abs().max() / (fa - f0).abs().max()).item<double>();
+}
+}  // namespace
+
+TEST(BandEnvelope, SeparableCriticJudgesEachBandAlone) {
+  // Its logit is a sum of per-band terms, so a change in one band cannot alter how a change in
+  // another counts: the interaction is rounding. The joint critic is the control that the
+  // statistic can see an interaction (its first layer mixes the bands).
+  for (uint32_t seed : {11u, 12u, 13u}) {
+    torch::manual_seed(seed);
+    EnvelopeCritic separable(8, kLength, GanInit::kHe, EnvelopeCriticKind::kSeparable);
+    torch::manual_seed(seed);
+    EnvelopeCritic joint(8, kLength, GanInit::kHe, EnvelopeCriticKind::kJoint);
+    EXPECT_LT(band_interaction(separable, seed), 1e-4) << "seed " << seed;
+    EXPECT_GT(band_interaction(joint, seed), 1e-2) << "seed " << seed;
+  }
+}
+
+TEST(BandEnvelope, SeparableViewKeepsTheWaveformCriticAndIsSelectable) {
+  torch::manual_seed(6);
+  Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
+  torch::manual_seed(6);
+  Discriminator separable(4, 25, GanInit::kHe, GanDiscView::kWaveformSeparableEnvelope);
+  expect_waveform_weights_kept(plain, separable);
+  auto q = separable->named_parameters();
+  EXPECT_TRUE(q.contains("envelope.envelope_band_output.weight"));
+  EXPECT_FALSE(q.contains("envelope.envelope_output.weight"));
+  // Each envelope layer is grouped by band: 11 groups of width << i channels.
+  EXPECT_EQ(q["envelope.envelope_conv_0.weight"].sizes(), torch::IntArrayRef({kBandGainBands * 4, 1, 5}));
+  EXPECT_EQ(q["envelope.envelope_conv_2.weight"].sizes(), torch::IntArrayRef({kBandGainBands * 16, 8, 5}));
+  torch::NoGradGuard no_grad;
+  const torch::Tensor x = torch::randn({3, 1, kLength}) * 0.1;
+  EXPECT_EQ(separable->forward(x).sizes(), torch::IntArrayRef({3}));
+  EXPECT_GT((separable->forward(x) - plain->forward(x)).abs().max().item<double>(), 0.0);
+  // The name parses to the view.
+  EXPECT_EQ(parse_choice(kGanDiscViewNames, "waveform+separable-envelope", "--disc-view"),
+            GanDiscView::kWaveformSeparableEnvelope);
 }

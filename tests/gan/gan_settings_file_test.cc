@@ -132,7 +132,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.generator_activation = kGanActivationNames[k % 2].second;
     s.generator_update = kGanGeneratorUpdateNames[k % 2].second;
     s.disc_augment = kGanDiscAugmentNames[k % 2].second, s.precision = kGanPrecisionNames[k % 2].second;
-    s.disc_view = kGanDiscViewNames[k % 2].second;
+    s.disc_view = kGanDiscViewNames[k % kGanDiscViewNames.size()].second;  // three views, three rounds
     s.real_list = "a b/real.scp", s.synthetic_list = "";
     const std::string text = gan_settings_text(s);
     const GanSettings back = parse_gan_settings(text, "written");
