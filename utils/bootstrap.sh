@@ -35,5 +35,4 @@ cmake_args=(-S "$root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release)
 echo "bootstrap: configuring and building in $build_dir" >&2
 cmake "${cmake_args[@]}" >&2
 # Each LibTorch translation unit needs ~1.4 GB of RAM to compile; 2 jobs fit the smallest machines.
-# The cores without OMP_NUM_THREADS: GNU nproc honours it (a caller's OMP_NUM_THREADS=1 built with one job).
-ninja -C "$build_dir" -j "${TSRIR_BUILD_JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}" >&2
+ninja -C "$build_dir" -j "${TSRIR_BUILD_JOBS:-$("$root/utils/cores")}" >&2

@@ -12,9 +12,8 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 export BUILD_DIR=${BUILD_DIR:-$root/build}
 "$root/utils/bootstrap.sh"
-# The machine's cores: nproc honours OMP_NUM_THREADS, and with the export below (or a caller's) it
-# said 1, so every test and the sanitizer build ran one at a time (until 2026-12-07).
-cores=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
+# The machine's cores, whatever OMP_NUM_THREADS says (utils/cores says why).
+cores=$("$root/utils/cores")
 # Torch and OpenBLAS would each start one thread per core inside every test process.
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 status=0

@@ -9,6 +9,7 @@
 # 4 Hz (syllable rate) by sox; RIRs = exponentially decaying white noise with a direct-path
 # impulse, written as 32-bit float like TS-RIR's outputs; noises = brown noise.
 set -euo pipefail
+bench_root=$(cd "$(dirname "$0")/../.." && pwd)
 BIN=$(cd "${1:-$(dirname "$0")/../../build-augment/bin}" && pwd)
 N=${2:-1000}
 NUM_RIRS=20
@@ -90,4 +91,4 @@ first=$(head -1 data/out_pipe/wav.scp | cut -d' ' -f1)
 bash -c "$(head -1 data/out_pipe/wav.scp | cut -d' ' -f2- | sed 's/|$//')" 2>/dev/null | cmp - "wavs1/$first.wav" \
   && echo "piped == materialised for $first" >&2
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(date -u +%Y-%m-%d)" >&2
+echo "machine: $("$bench_root/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs); $(date -u +%Y-%m-%d)" >&2

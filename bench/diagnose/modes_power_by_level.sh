@@ -10,13 +10,15 @@
 # Prints, per build, the fraction of sets reporting room_modes at each level, the mean statistic,
 # and the fraction of null sets (nothing hidden) reporting it. JOBS=N probes at a time.
 set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+jobs=${JOBS:-$("$root/utils/cores")}
 builds=${1:?usage: $0 "<label>=<build-dir> ..." ["G list"] [seeds] [null sets]}
 levels=${2:--12 -9 -6 -3}
 seeds=${3:-15}
 nulls=${4:-15}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; levels $levels dB; $seeds sets per level (seeds 601..), $nulls null sets (seeds 501..)"
+echo "machine: $("$root/utils/cores") cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; levels $levels dB; $seeds sets per level (seeds 601..), $nulls null sets (seeds 501..)"
 : > "$tmp/jobs"
 for b in $builds; do
   label=${b%%=*}
@@ -38,7 +40,7 @@ run_one() {  # <label> <build> <level|null> <seed>
 }
 export -f run_one
 export tmp
-xargs -P "${JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}" -L 1 bash -c 'run_one "$@"' _ < "$tmp/jobs"
+xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _ < "$tmp/jobs"
 cat "$tmp"/res.* > "$tmp/all"
 echo
 header="| build | null sets reporting room_modes |"

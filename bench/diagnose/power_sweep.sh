@@ -24,6 +24,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$root/build}
+jobs=${JOBS:-$("$root/utils/cores")}
 seeds=${2:-5}
 nulls=${3:-20}
 strengths=${STRENGTHS:-0.5 1 2 3}
@@ -40,7 +41,7 @@ else
   tmp=$(mktemp -d)
   trap 'rm -rf "$tmp"' EXIT
 fi
-echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; $seeds seeds per point, $nulls null sets, ${JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)} probes at a time"
+echo "machine: $("$root/utils/cores") cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; $seeds seeds per point, $nulls null sets, $jobs probes at a time"
 # One probe per set, JOBS at a time (default: the number of cores); each writes its own part file,
 # concatenated in a fixed order, so the table does not depend on JOBS.
 mkdir -p "$tmp/parts"
@@ -71,7 +72,7 @@ run_one() {  # <index> <effect|null> <strength> <seed>
 }
 export -f run_one
 export tmp probe
-xargs -P "${JOBS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}" -L 1 bash -c 'run_one "$@"' _ < "$jobs_list"
+xargs -P "$jobs" -L 1 bash -c 'run_one "$@"' _ < "$jobs_list"
 cat /dev/null "$tmp"/parts/*.null >> "$tmp/null" 2>/dev/null || true
 cat /dev/null "$tmp"/parts/*.hidden >> "$tmp/hidden" 2>/dev/null || true
 echo

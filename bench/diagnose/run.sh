@@ -15,7 +15,7 @@ ninja -C "$build" rir-diagnose >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 "$root/docs/results/make_r3vival_inputs.sh" "$data" "$tmp/in" 2>/dev/null
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC"
+echo "machine: $("$root/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC"
 echo "| RIRs | threads | wall s | CPU s (user+sys) | peak RSS MB |"
 echo "|---|---|---|---|---|"
 for t in 1 2; do

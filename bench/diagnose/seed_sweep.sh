@@ -14,7 +14,7 @@ n=${2:-10}
 [ ! -f "$build/build.ninja" ] || ninja -C "$build" diagnose_test >/dev/null
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; draws k = 0..$((n - 1)); cases ${FILTER:-Catalog/*:Confounds/*:OutOfCatalog/*}"
+echo "machine: $("$root/utils/cores") cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M') UTC; draws k = 0..$((n - 1)); cases ${FILTER:-Catalog/*:Confounds/*:OutOfCatalog/*}"
 # One gtest process per draw, JOBS at a time (default 1: each case already uses 2 threads); each
 # draw writes its own file, concatenated in draw order, so the table does not depend on JOBS.
 draw() {

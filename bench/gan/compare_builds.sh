@@ -11,7 +11,7 @@ here=$(cd "$(dirname "$0")/../.." && pwd)
 prev=$1; new=$2; rounds=${3:-3}
 source "$here/bench/gan/speed_lib.sh"
 bench_setup
-echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $("$here/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "# previous: $prev; new: $new; load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 "$new/ts-rirgan-train" --real="$work/rir.scp" --synthetic="$work/rir.scp" --width=64 --batch-size=4 --steps=3 \
   --num-threads=2 --checkpoint-every=100000 --progress-interval=60 "$work/m64" 2> /dev/null

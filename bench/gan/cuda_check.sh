@@ -40,7 +40,7 @@ build=${BUILD:-$work/build}
 device=${TSRIR_CHECK_DEVICE:-cuda}
 # The timed training run: the paper's width and batch (a rehearsal may shrink them).
 gan_width=${GAN_WIDTH:-64} gan_batch=${GAN_BATCH:-64} gan_steps=${GAN_STEPS:-20}
-cores=${THREADS:-$(nproc)}  # threads for LibTorch and OpenMP (a loaded rehearsal machine wants 1)
+cores=${THREADS:-$("$root/utils/cores")}  # threads for LibTorch and OpenMP (a loaded rehearsal machine wants 1)
 start=$(date +%s)
 summary=$out/summary.md
 python=${PYTHON:-$(command -v python3)}

@@ -7,7 +7,8 @@
 # with rir-metrics, and writes docs/results/ts-rirgan-r3vival.md (Table 1 means and the per-RIR
 # input->output correlations).
 # Usage: bench/gan/r3vival_translation.sh [build-dir] [out-page] ["ts-rirgan-train options"]
-# R3VIVAL_KEEP=DIR keeps the work (model, GAS and translated test RIRs, metrics) in DIR, a new directory.
+# R3VIVAL_KEEP=DIR keeps the work (model, GAS and translated test RIRs, metrics) in DIR, a new
+# directory, which is then the work directory (its lists name the files there).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-$here/build}
@@ -18,8 +19,13 @@ r3=${R3VIVAL_DIR:-$here/../shared/data/rirs/r3vival}
 bin=$build/bin
 keep=${R3VIVAL_KEEP:-}
 [[ -z $keep || ! -e $keep ]] || { echo "$0: R3VIVAL_KEEP=$keep exists; give a new directory" >&2; exit 1; }
-work=$(mktemp -d)
-trap 'if [[ -n $keep ]]; then mv "$work" "$keep"; else rm -rf "$work"; fi' EXIT
+if [[ -n $keep ]]; then
+  mkdir -p "$keep"
+  work=$(cd "$keep" && pwd)
+else
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+fi
 load0=$(cut -d' ' -f1-3 /proc/loadavg)
 date0=$(date -u +%Y-%m-%dT%H:%MZ)
 "$here/docs/results/make_r3vival_inputs.sh" "$r3" "$work/in"

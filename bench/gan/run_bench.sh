@@ -22,7 +22,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 for f in "$data"/*.wav; do b=$(basename "$f" .wav); echo "$b $f"; done > "$work/rir.scp"
 n=$(wc -l < "$work/rir.scp")
-echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), --num-threads=$threads"
+echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $("$here/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), --num-threads=$threads"
 echo "# load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 
 # median of step_s over steps >= 2 of a loss log

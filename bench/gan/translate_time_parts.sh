@@ -26,9 +26,7 @@ if perf stat -e task-clock true > /dev/null 2>&1; then
 fi
 "$bin/ts-rirgan-train" --real="$work/rir.scp" --synthetic="$work/rir.scp" --width=2 --batch-size=4 --steps=1 \
   --num-threads=2 --progress-interval=60 "$work/m2" 2> /dev/null
-# translate_row reads $work/m64: the width-2 model under that name.
-mv "$work/m2" "$work/m64"
-for r in 1 2 3; do translate_row "width-2 model (no arithmetic to speak of), run $r" "$bin" 16 | sed 's/width 64/width 2/'; done
+for r in 1 2 3; do translate_row "width-2 model (no arithmetic to speak of), run $r" "$bin" 16 "$work/m2" 2; done
 for batch in 16 29; do
   "$bin/gan_forward_bench" --width=64 --decoder=light --generator=band-gain --correction-max-hz=500 \
     --batch="$batch" --threads=2 --reps=5 | awk -v b="$batch" -v n="$n" -F'|' '{

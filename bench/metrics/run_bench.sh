@@ -12,7 +12,7 @@ for t in rir-metrics metrics_bench; do
 done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+echo "# $(date -u +%Y-%m-%dT%H:%MZ) $(uname -n), $("$here/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "# load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 "$bin/metrics_bench" generate "$work" 1000
 # 4,000 entries: the 1,000 files listed four times under distinct ids (memory does not depend on

@@ -40,7 +40,7 @@ machine_kind() {
 }
 
 machine_line() {
-  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg), temporary files on $(df -T "${TMPDIR:-/tmp}" | awk 'NR == 2 { print $2 }')"
+  echo "machine: $("$peers_root/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg), temporary files on $(df -T "${TMPDIR:-/tmp}" | awk 'NR == 2 { print $2 }')"
   echo "peers: KALDI_ROOT=${KALDI_ROOT:-unset} PRA_PYTHONPATH=${PRA_PYTHONPATH:-unset} RIR_GENERATOR=${RIR_GENERATOR:-unset}"
 }
 

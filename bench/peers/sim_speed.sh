@@ -17,7 +17,7 @@ set -euo pipefail
 source "$(dirname "$0")/common.sh"
 n=${1:-1000}; pra_reps=${2:-5}; rg_reps=${3:-1}; ours_reps=${4:-3}
 need_tsrir rir-simulate
-P=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)  # nproc honours OMP_NUM_THREADS
+P=$("$peers_root/utils/cores")
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 machine_line
 echo

@@ -19,5 +19,5 @@ echo "|---|---|---|"
 sed -n 's/^run.sh: stage \([0-9]\) done (\([0-9]*\) s): \(.*\)$/| \1 | \2 | \3 |/p' "$tmp/err" | cut -c1-110
 echo
 printf 'demo %s: wall %.0f s, CPU %.0f s (user %.0f + sys %.0f), peak RSS %.0f MB, load average %s, %s\n' \
-  "$size" "$wall" "$(echo "$user + $sys" | bc)" "$user" "$sys" "$((rss_kb / 1024))" "$(cut -d' ' -f1-3 /proc/loadavg)" "$(nproc) cores"
+  "$size" "$wall" "$(echo "$user + $sys" | bc)" "$user" "$sys" "$((rss_kb / 1024))" "$(cut -d' ' -f1-3 /proc/loadavg)" "$("$root/utils/cores") cores"
 grep -A12 '^# Mean acoustic' "$tmp/out" || true

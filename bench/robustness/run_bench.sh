@@ -124,6 +124,6 @@ open(sys.argv[1] + '/spk2utt', 'w').write(''.join('%s %s\n' % (s, ' '.join(us)) 
 PY
 run "reverberate-data (pipes), ${lines}-line wav.scp" "$bin/reverberate-data" --rir-set-parameters "$work/rir.scp" \
   --random-seed=1 "$work/big" "$work/big_rvb"
-run "rir-metrics, ${metrics_rirs}-line scp" "$bin/rir-metrics" --num-threads="$(nproc)" "$work/big_rir.scp"
+run "rir-metrics, ${metrics_rirs}-line scp" "$bin/rir-metrics" --num-threads="$("$root/utils/cores")" "$work/big_rir.scp"
 run "rir-simulate, ${lines}-line room list, bad last line" "$bin/rir-simulate" "$work/rooms.txt" "$work/sim"
 [ "$failed" = 0 ] || { echo "# a check failed (exit status, RSS limit or output comparison)"; exit 1; }

@@ -2,8 +2,9 @@
 # both time, one.txt (N source positions, one microphone each) and eight.txt (the same positions with
 # an 8-microphone circular array of radius 4.25 cm, circular8.txt).
 #   write_array_lists DIR N
+array_lists_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 write_array_lists() {
-  echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M UTC')"
+  echo "machine: $("$array_lists_root/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u '+%F %H:%M UTC')"
   printf 'circular n=8 radius_m=0.0425\n' > "$1/circular8.txt"
   for i in $(seq 1 "$2"); do
     x=$(awk -v i="$i" 'BEGIN { printf "%.3f", 3.0 + 2.5 * ((i * 37) % 100) / 100 }')

@@ -13,7 +13,7 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 "$py" "$here/../peers/rooms.py" tsrir reference "$n" > "$tmp/one.txt"
 printf 'circular n=8 radius_m=0.05\n' > "$tmp/circular8.txt"
 sed 's/ absorption=/ array=circular8.txt absorption=/' "$tmp/one.txt" > "$tmp/eight.txt"
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "machine: $("$here/../../utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u '+%F %H:%M UTC'), load average $(cut -d' ' -f1-3 /proc/loadavg)"
 cpu_ms() {  # <bin> <list> <length>: best of 3, ms per position
   local best=""
   for _ in 1 2 3; do

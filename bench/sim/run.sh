@@ -10,7 +10,7 @@ if [ ! -f "$build/build.ninja" ]; then
   cmake -S "$root" -B "$build" -G Ninja -DTSRIR_WITH_TORCH=OFF -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 ninja -C "$build" sim_bench rir-simulate >/dev/null
-echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%F)"
+echo "machine: $("$root/utils/cores") cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%F)"
 "$build/bin/sim_bench" $quick
 
 # End to end: 200 reference-room RIRs with random absorption drawn per RIR, written as int16 WAVs.
@@ -24,7 +24,7 @@ echo "## rir-simulate end to end: 200 RIRs (T60 0.2-1.0 s, 1.0 s, int16 WAV + li
 echo "| threads | wall s | ms per RIR |"
 echo "|---|---|---|"
 for t in 1 2 4 8 16; do
-  [ "$t" -gt "$(nproc)" ] && break
+  [ "$t" -gt "$("$root/utils/cores")" ] && break
   start=$(date +%s.%N)
   "$build/bin/rir-simulate" --num-threads=$t "$tmp/rooms.txt" "$tmp/out$t" 2>/dev/null
   end=$(date +%s.%N)

@@ -18,26 +18,50 @@ constexpr int kEnvelopeKernel = 5;
 
 int64_t frame_count(int64_t n) { return (n - kEnvelopeFrameLength) / kEnvelopeHop + 1; }
 
+// The power spectrum's sum over the bins of each frame [..., L] as the envelope frames it.
+torch::Tensor frame_power(const torch::Tensor& windowed) {
+  // (|X|^2 as re^2 + im^2: the complex abs has no gradient at 0)
+  return torch::view_as_real(torch::fft::rfft(windowed, kEnvelopeFrameLength, -1)).pow(2).sum(-1);
+}
+
+// [batch, 1, 1]: the energy of signal [batch, n] in its peak +-kDirectHalfWindow samples as one
+// cell of all bands would hold it: that stretch at a frame's centre (samples outside the signal
+// count as 0), windowed, its power summed over the bins (the band responses sum to 1 at every bin).
+torch::Tensor direct_sound_cell(const torch::Tensor& signal, const torch::Tensor& window) {
+  const int64_t n = signal.size(-1);
+  const torch::Tensor peak = signal.abs().argmax(-1, true);  // [batch, 1]
+  const torch::Tensor index = peak + torch::arange(-kDirectHalfWindow, kDirectHalfWindow, peak.options());
+  const torch::Tensor inside = (index >= 0).logical_and(index < n);
+  const torch::Tensor direct = signal.gather(-1, index.clamp(0, n - 1)) * inside;  // [batch, 2 * half]
+  const torch::Tensor centre = window.narrow(0, kEnvelopeFrameLength / 2 - kDirectHalfWindow, 2 * kDirectHalfWindow);
+  const torch::Tensor frame = torch::constant_pad_nd(direct * centre, {kEnvelopeFrameLength / 2 - kDirectHalfWindow,
+                                                                       kEnvelopeFrameLength / 2 - kDirectHalfWindow});
+  return frame_power(frame).sum(-1).view({-1, 1, 1});
+}
+
 }  // namespace
 
 torch::Tensor envelope_window() { return torch::hann_window(kEnvelopeFrameLength, torch::kFloat); }
 
 torch::Tensor envelope_band_responses() { return band_gain_response_tensor(kEnvelopeFrameLength); }
 
-torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& window, const torch::Tensor& responses) {
+torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& window, const torch::Tensor& responses,
+                                EnvelopeReference reference) {
   const torch::Tensor signal = x.to(torch::kFloat).squeeze(1);  // [batch, n]
   const torch::Tensor frames = signal.unfold(-1, kEnvelopeFrameLength, kEnvelopeHop) * window;  // [batch, F, L]
-  const torch::Tensor power = torch::view_as_real(torch::fft::rfft(frames, kEnvelopeFrameLength, -1)).pow(2).sum(-1);  // [batch, F, bins]
-  // (|X|^2 as re^2 + im^2: the complex abs has no gradient at 0)
+  const torch::Tensor power = frame_power(frames);  // [batch, F, bins]
   const torch::Tensor energy = torch::matmul(responses, power.transpose(1, 2));  // [batch, bands, F]
-  // Relative to the RIR's loudest cell, floored 80 dB below it: the same map at any gain.
-  const torch::Tensor peak = std::get<0>(energy.flatten(1).max(1)).clamp_min(1e-30).view({-1, 1, 1});
+  // Relative to the reference, floored 80 dB below it: the same map at any gain.
+  const torch::Tensor level = reference == EnvelopeReference::kLoudestCell
+                                  ? std::get<0>(energy.flatten(1).max(1)).view({-1, 1, 1})
+                                  : direct_sound_cell(signal, window);
   const double floor = std::pow(10.0, kEnvelopeFloorDb / 10.0);
-  return torch::log10(energy / peak + floor) * 0.5;  // 10 log10(.) / 20 dB
+  return torch::log10(energy / level.clamp_min(1e-30) + floor) * 0.5;  // 10 log10(.) / 20 dB
 }
 
-EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init, EnvelopeCriticKind kind)
-    : kind_(kind) {
+EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init, EnvelopeCriticKind kind,
+                                       EnvelopeReference reference)
+    : kind_(kind), reference_(reference) {
   // Separable: each layer's channels are the bands' own groups, half the joint form's channels in
   // each band (5.5x the joint form's in all; the joint form's in each would be 11x).
   const int64_t groups = kind == EnvelopeCriticKind::kSeparable ? kBandGainBands : 1;
@@ -66,7 +90,7 @@ EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit 
 }
 
 torch::Tensor EnvelopeCriticImpl::forward(const torch::Tensor& x) {
-  return logit_of_levels(band_log_envelope(x, window_, responses_).to(x.scalar_type()));
+  return logit_of_levels(band_log_envelope(x, window_, responses_, reference_).to(x.scalar_type()));
 }
 
 torch::Tensor EnvelopeCriticImpl::logit_of_levels(const torch::Tensor& levels) {

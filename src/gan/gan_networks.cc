@@ -341,7 +341,9 @@ DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init,
   if (view != GanDiscView::kWaveform) {
     const EnvelopeCriticKind kind =
         view == GanDiscView::kWaveformSeparableEnvelope ? EnvelopeCriticKind::kSeparable : EnvelopeCriticKind::kJoint;
-    envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init, kind));
+    const EnvelopeReference reference =
+        view == GanDiscView::kWaveformDirectEnvelope ? EnvelopeReference::kDirectSound : EnvelopeReference::kLoudestCell;
+    envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init, kind, reference));
   }
 }
 

@@ -156,7 +156,8 @@ TORCH_MODULE(Generator);
 // [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
 // view kWaveformEnvelope (a departure): plus gan_band_envelope.h's critic of the band levels in
 // dB, whose logit is added to the waveform's; kWaveformSeparableEnvelope: the same with that critic's
-// per-band form (one critic per band, their logits averaged).
+// per-band form (one critic per band, their logits averaged); kWaveformDirectEnvelope: the joint
+// critic reading levels re the direct sound (EnvelopeReference::kDirectSound).
 class DiscriminatorImpl : public torch::nn::Module {
  public:
   DiscriminatorImpl(int width, int kernel_length, GanInit init = GanInit::kGlorot,

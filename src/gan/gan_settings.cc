@@ -118,7 +118,9 @@ void GanSettings::Register(OptionsItf* opts) {
                   "What the discriminators read (the paper: waveform); waveform+envelope adds a critic of each band's "
                   "level in dB per 8 ms frame, where an RIR's quiet late part (each band's decay) weighs as its start; "
                   "waveform+separable-envelope reads each band's levels on its own (one critic per band, their logits "
-                  "averaged), so that no band's verdict depends on another's");
+                  "averaged), so that no band's verdict depends on another's; waveform+direct-envelope is "
+                  "waveform+envelope with the levels re the direct sound (the peak +-2.5 ms) instead of the RIR's "
+                  "loudest cell");
   opts->RegisterEnum("generator-update", &generator_update, kGanGeneratorUpdateNames,
                   "sequential (the paper: G_SR then G_RS, each on fresh batches) or joint (CycleGAN's "
                   "reference: both generators from one forward, one summed loss)");

@@ -21,7 +21,7 @@ enum class GanGenerator { kOriginal, kResidual, kBandGain };
 enum class GanActivation { kRelu, kLeakyRelu };
 enum class GanGeneratorUpdate { kSequential, kJoint };
 enum class GanDiscAugment { kNone, kShiftGainPolarity };
-enum class GanDiscView { kWaveform, kWaveformEnvelope, kWaveformSeparableEnvelope };
+enum class GanDiscView { kWaveform, kWaveformEnvelope, kWaveformSeparableEnvelope, kWaveformDirectEnvelope };
 enum class GanPrecision { kFloat32, kBfloat16 };
 
 inline const Choices<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
@@ -37,7 +37,8 @@ inline const Choices<GanDiscAugment> kGanDiscAugmentNames = {
 inline const Choices<GanDiscView> kGanDiscViewNames = {
     {"waveform", GanDiscView::kWaveform},
     {"waveform+envelope", GanDiscView::kWaveformEnvelope},
-    {"waveform+separable-envelope", GanDiscView::kWaveformSeparableEnvelope}};
+    {"waveform+separable-envelope", GanDiscView::kWaveformSeparableEnvelope},
+    {"waveform+direct-envelope", GanDiscView::kWaveformDirectEnvelope}};
 inline const Choices<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
                                                          {"bfloat16", GanPrecision::kBfloat16}};
 

@@ -107,7 +107,9 @@ TEST(KaldiBlockError, ExactConvolutionPlusModelIsKaldisAlgorithm) {
       }
       EXPECT_LT(worst, 1e-5) << "M " << m << " N " << n;
       // The defect itself is there to be modelled (not a rounding effect) for all but tiny signals.
-      if (n >= 5 && m >= 2) EXPECT_GT(worst_error, 1e-3) << "M " << m << " N " << n;
+      if (n >= 5 && m >= 2) {
+        EXPECT_GT(worst_error, 1e-3) << "M " << m << " N " << n;
+      }
     }
   }
 }

@@ -436,7 +436,9 @@ TEST_F(ReverberateData, ArrayNoisesPerChannelInBothForms) {
       EXPECT_EQ(pipe.find("remix") != std::string::npos, name == "split");
       const bool dry = name == "dry";
       EXPECT_EQ(pipe.find("--impulse-response") == std::string::npos, dry);
-      if (dry) EXPECT_EQ(pipe.find("--multi-channel-output"), std::string::npos);
+      if (dry) {
+        EXPECT_EQ(pipe.find("--multi-channel-output"), std::string::npos);
+      }
       EXPECT_EQ(run_pipe(pipe, id), run_pipe(ours.wav_scp.at(id), id)) << id;
     }
   }

@@ -174,7 +174,9 @@ TEST(Plan, KaldiFrequenciesOverManyRecordings) {
   int fg = 0, fg_early = 0;
   for (const RecordingPlan& p : plans) {
     rvb += p.rir >= 0;
-    if (p.rir >= 0) EXPECT_EQ(sources.rirs[p.rir].room_id, p.room);
+    if (p.rir >= 0) {
+      EXPECT_EQ(sources.rirs[p.rir].room_id, p.room);
+    }
     const bool in_a = p.room == "A";
     room_a += in_a;
     int iso = 0, ps = 0;
@@ -206,7 +208,9 @@ TEST(Plan, KaldiFrequenciesOverManyRecordings) {
         EXPECT_TRUE(n.snr_db == 20 || n.snr_db == 10 || n.snr_db == 0);
       }
     }
-    if (iso) EXPECT_EQ(p.noises.front().noise, 0);  // Kaldi's order: isotropic first
+    if (iso) {  // Kaldi's order: isotropic first
+      EXPECT_EQ(p.noises.front().noise, 0);
+    }
     EXPECT_LE(iso, 1);
     iso_in_a += iso;
     if (in_a && p.rir < 0) {

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "gan/gan_band_envelope.h"
@@ -52,8 +53,8 @@ std::vector<double> decaying_noise(double t60_s, Shape shape, uint32_t seed) {
   return x;
 }
 
-torch::Tensor levels_of(const torch::Tensor& x) {
-  return band_log_envelope(x, envelope_window(), envelope_band_responses());
+torch::Tensor levels_of(const torch::Tensor& x, EnvelopeReference reference = EnvelopeReference::kLoudestCell) {
+  return band_log_envelope(x, envelope_window(), envelope_band_responses(), reference);
 }
 
 torch::Tensor as_batch(const std::vector<double>& x) {
@@ -93,9 +94,57 @@ TEST(BandEnvelope, EachBandShowsItsOwnDecayRate) {
 
 TEST(BandEnvelope, TheMapIsTheSameAtAnyGain) {
   const torch::Tensor x = as_batch(decaying_noise(0.5, Shape::kHigh, 7)) + as_batch(decaying_noise(0.3, Shape::kLow, 8));
-  const torch::Tensor a = levels_of(x), b = levels_of(x * 0.01), c = levels_of(-3.0 * x);
-  EXPECT_LT((a - b).abs().max().item<double>(), 1e-4);
-  EXPECT_LT((a - c).abs().max().item<double>(), 1e-4);
+  for (EnvelopeReference reference : {EnvelopeReference::kLoudestCell, EnvelopeReference::kDirectSound}) {
+    const torch::Tensor a = levels_of(x, reference), b = levels_of(x * 0.01, reference);
+    const torch::Tensor c = levels_of(-3.0 * x, reference);
+    EXPECT_LT((a - b).abs().max().item<double>(), 1e-4);
+    EXPECT_LT((a - c).abs().max().item<double>(), 1e-4);
+  }
+}
+
+TEST(BandEnvelope, DirectSoundReferenceIsThePeaksEnergy) {
+  // Two impulses, amplitudes 1 and b, each at a frame's centre (frames 1 and 13: 96 ms apart): the
+  // second's frame holds b^2 of the first's energy, so summed over the bands (which partition a
+  // frame's energy) its level re the direct sound is 20 log10(b) dB; the first's is 0 dB.
+  for (double b : {0.5, 0.1, 0.01}) {
+    std::vector<double> x(kLength, 0.0);
+    const int64_t first = kEnvelopeFrameLength / 2 + kEnvelopeHop, second = first + 12 * kEnvelopeHop;
+    x[first] = 1.0, x[second] = b;
+    const torch::Tensor levels = levels_of(as_batch(x), EnvelopeReference::kDirectSound);
+    const auto frame_db = [&](int64_t f) {
+      return 10.0 * std::log10(torch::pow(10.0, 2.0 * levels.select(2, f)).sum().item<double>());
+    };
+    EXPECT_NEAR(frame_db(1), 0.0, 0.01) << "b " << b;
+    EXPECT_NEAR(frame_db(13), 20.0 * std::log10(b), 0.01) << "b " << b;
+  }
+}
+
+TEST(BandEnvelope, DirectSoundReferenceIgnoresWhichCellIsLoudest) {
+  // An impulse of 2 (the direct sound), a low-passed decaying noise from 5 ms (peak 0.03), and a
+  // high-passed burst at 20-40 ms (an early reflection cluster) whose level varies 12 dB while its
+  // peak stays below the impulse's: in the louder form the burst's frames hold the loudest cell.
+  // Re the direct sound the low band's late frames (from 100 ms, after the burst's) do not move;
+  // re the loudest cell they move by the burst's change (the control that the statistic sees a
+  // shift of the reference). Over seeds.
+  for (uint32_t seed : {21u, 22u, 23u}) {
+    const auto low = decaying_noise(0.6, Shape::kLow, seed), high = decaying_noise(10.0, Shape::kHigh, seed + 50);
+    const auto signal_with_burst = [&](double burst_gain) {
+      std::vector<double> x(kLength, 0.0);
+      x[160] = 2.0;
+      for (int64_t i = 240; i < kLength; ++i) x[i] += 0.03 * low[i - 240];
+      for (int64_t i = 480; i < 800; ++i) x[i] += burst_gain * high[i];
+      return as_batch(x);
+    };
+    const torch::Tensor quiet = signal_with_burst(0.25), loud = signal_with_burst(1.0);
+    ASSERT_EQ(quiet.abs().argmax().item<int64_t>(), 160);
+    ASSERT_EQ(loud.abs().argmax().item<int64_t>(), 160);
+    const auto late_low_shift_db = [&](EnvelopeReference reference) {
+      const torch::Tensor a = levels_of(quiet, reference), b = levels_of(loud, reference);
+      return 20.0 * (b - a).select(1, 0).narrow(1, 13, 60).abs().max().item<double>();
+    };
+    EXPECT_LT(late_low_shift_db(EnvelopeReference::kDirectSound), 1e-3) << "seed " << seed;
+    EXPECT_GT(late_low_shift_db(EnvelopeReference::kLoudestCell), 6.0) << "seed " << seed;
+  }
 }
 
 namespace {
@@ -138,14 +187,21 @@ void expect_waveform_weights_kept(Discriminator& plain, Discriminator& with_view
   }
   EXPECT_GT(q.size(), p.size());
 }
+
+// A waveform-only discriminator and one with `view`, each built from `seed`; their shared waveform
+// layers checked equal.
+std::pair<Discriminator, Discriminator> plain_and_with_view(GanDiscView view, uint64_t seed) {
+  torch::manual_seed(seed);
+  Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
+  torch::manual_seed(seed);
+  Discriminator with_view(4, 25, GanInit::kHe, view);
+  expect_waveform_weights_kept(plain, with_view);
+  return {plain, with_view};
+}
 }  // namespace
 
 TEST(BandEnvelope, DiscriminatorWithTheViewAddsTheEnvelopeCritic) {
-  torch::manual_seed(5);
-  Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
-  torch::manual_seed(5);
-  Discriminator both(4, 25, GanInit::kHe, GanDiscView::kWaveformEnvelope);
-  expect_waveform_weights_kept(plain, both);
+  auto [plain, both] = plain_and_with_view(GanDiscView::kWaveformEnvelope, 5);
   auto q = both->named_parameters();
   // And its logit is the waveform's plus the envelope critic's.
   torch::NoGradGuard no_grad;
@@ -192,11 +248,7 @@ TEST(BandEnvelope, SeparableCriticJudgesEachBandAlone) {
 }
 
 TEST(BandEnvelope, SeparableViewKeepsTheWaveformCriticAndIsSelectable) {
-  torch::manual_seed(6);
-  Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
-  torch::manual_seed(6);
-  Discriminator separable(4, 25, GanInit::kHe, GanDiscView::kWaveformSeparableEnvelope);
-  expect_waveform_weights_kept(plain, separable);
+  auto [plain, separable] = plain_and_with_view(GanDiscView::kWaveformSeparableEnvelope, 6);
   auto q = separable->named_parameters();
   EXPECT_TRUE(q.contains("envelope.envelope_band_output.weight"));
   EXPECT_FALSE(q.contains("envelope.envelope_output.weight"));
@@ -210,4 +262,25 @@ TEST(BandEnvelope, SeparableViewKeepsTheWaveformCriticAndIsSelectable) {
   // The name parses to the view.
   EXPECT_EQ(parse_choice(kGanDiscViewNames, "waveform+separable-envelope", "--disc-view"),
             GanDiscView::kWaveformSeparableEnvelope);
+}
+
+TEST(BandEnvelope, DirectViewKeepsTheWaveformCriticAndReadsLevelsReTheDirectSound) {
+  auto [plain, direct] = plain_and_with_view(GanDiscView::kWaveformDirectEnvelope, 7);
+  auto q = direct->named_parameters();
+  EXPECT_TRUE(q.contains("envelope.envelope_output.weight"));  // the joint critic
+  // Its logit is the waveform's plus that of the joint critic reading the levels re the direct
+  // sound: a joint critic given the view's weights reproduces it from those levels, not from the
+  // loudest cell's.
+  torch::NoGradGuard no_grad;
+  EnvelopeCritic joint(4, kLength, GanInit::kHe);
+  for (auto& item : joint->named_parameters()) item.value().copy_(q["envelope." + item.key()]);
+  torch::Tensor x = torch::randn({3, 1, kLength}) * 0.01;
+  x.select(2, 200).fill_(1.0);  // a direct sound
+  const torch::Tensor envelope_part = direct->forward(x) - plain->forward(x);
+  const torch::Tensor by_direct = joint->logit_of_levels(levels_of(x, EnvelopeReference::kDirectSound));
+  const torch::Tensor by_loudest = joint->logit_of_levels(levels_of(x, EnvelopeReference::kLoudestCell));
+  EXPECT_LT((envelope_part - by_direct).abs().max().item<double>(), 1e-4);
+  EXPECT_GT((envelope_part - by_loudest).abs().max().item<double>(), 1e-3);  // the maps differ here
+  EXPECT_EQ(parse_choice(kGanDiscViewNames, "waveform+direct-envelope", "--disc-view"),
+            GanDiscView::kWaveformDirectEnvelope);
 }

@@ -4,6 +4,7 @@
 // the older ones, written before some keys existed, must read with the paper's values for those.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <string>
 
@@ -119,7 +120,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_TRUE(values.count(name)) << name << " is an option but not a setting";
   }
   // Every field away from its default, every enum at each of its values.
-  for (size_t k = 0; k < kGanGeneratorNames.size(); ++k) {
+  for (size_t k = 0; k < std::max(kGanGeneratorNames.size(), kGanDiscViewNames.size()); ++k) {
     s.width = 3 + int(k), s.batch_size = 5, s.seed = 18446744073709551615ull, s.learning_rate = 1.0 / 3;
     s.disc_learning_rate = 2e-7, s.disc_updates = 4, s.cycle_weight = 0.1, s.identity_weight = 1e300;
     s.gain_weight = 0.25, s.rmsprop_initial_ms = 1, s.correction_max_hz = 7999.5, s.warmup_steps = 1LL << 40;
@@ -127,12 +128,12 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.identity_direct_bands = k % 2 ? 1 : 3;
     s.identity_direct_weight = k % 2 ? 0.0 : 0.75;
     s.generator_average_decay = k % 2 ? 0.0 : 0.9995;
-    s.generator = kGanGeneratorNames[k].second;
+    s.generator = kGanGeneratorNames[k % kGanGeneratorNames.size()].second;
     s.init = kGanInitNames[k % 2].second, s.decoder = kGanDecoderNames[k % 2].second;
     s.generator_activation = kGanActivationNames[k % 2].second;
     s.generator_update = kGanGeneratorUpdateNames[k % 2].second;
     s.disc_augment = kGanDiscAugmentNames[k % 2].second, s.precision = kGanPrecisionNames[k % 2].second;
-    s.disc_view = kGanDiscViewNames[k % kGanDiscViewNames.size()].second;  // three views, three rounds
+    s.disc_view = kGanDiscViewNames[k % kGanDiscViewNames.size()].second;
     s.real_list = "a b/real.scp", s.synthetic_list = "";
     const std::string text = gan_settings_text(s);
     const GanSettings back = parse_gan_settings(text, "written");

@@ -22,7 +22,9 @@ usage() {
   exit 1
 }
 
-max_jobs=$(nproc 2>/dev/null || echo 1)
+# All cores, as run.pl counts them: GNU nproc alone honours OMP_NUM_THREADS, which cluster set-ups
+# often export as 1 (and then ran one job at a time).
+max_jobs=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc 2>/dev/null || echo 1)
 num_threads=1
 jobname=""
 jobstart=1
