@@ -3,7 +3,7 @@
 
   bench/gan/band_window_levels.py NAME=SCP [NAME=SCP ...]
 
-Each SCP is a Kaldi list "<id> <wav path>" (16 kHz, or 48 kHz resampled here by 1:3 polyphase). For
+Each SCP is a Kaldi list "<id> <wav path>" (16 kHz, or 48 kHz resampled by 1:3 polyphase: rir_bands.py). For
 every RIR: the waveform scaled to its own peak (as the envelope critic's map is re each RIR's loudest
 cell), the onset (first sample within 20 dB of the peak), then each band's energy (6th-order
 Butterworth octave bands, zero-phase: not the generator's raised-cosine bands nor rir-metrics'
@@ -18,55 +18,35 @@ A second table per set: each band's decay rate in dB/s, a least-squares line thr
 a tail that bends (a floor, or a second slope) shows as two different rates.
 Needs numpy and scipy (Debian python3-scipy); reads WAVs only, writes nothing.
 """
+import os
 import sys
 
 import numpy as np
-from scipy.io import wavfile
-from scipy.signal import butter, resample_poly, sosfiltfilt
+from scipy.signal import sosfiltfilt
 
-RATE_HZ = 16000
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rir_bands import RATE_HZ, butterworth_band, onset, read_rir, read_scp, samples, window_levels_db  # noqa: E402
+
 CENTRES_HZ = [125, 250, 500, 1000, 2000, 4000]
 WINDOWS_MS = [(-1, 2.5), (2.5, 20), (20, 50), (50, 100), (100, 200), (200, 400), (400, 700), (700, 1000)]
 SLOPE_SPANS_MS = [(50, 150), (150, 300), (300, 450), (450, 600), (600, 800)]
 FRAME_MS = 10
-
-
-def band_filter(centre_hz):
-    low, high = centre_hz / np.sqrt(2), min(centre_hz * np.sqrt(2), 0.95 * RATE_HZ / 2)
-    return butter(6, [low, high], 'bandpass', fs=RATE_HZ, output='sos')
-
-
-FILTERS = [band_filter(c) for c in CENTRES_HZ]
-
-
-def read_rir(path):
-    rate, x = wavfile.read(path)
-    x = x.astype(float)
-    if x.ndim > 1:
-        sys.exit(f'{path}: {x.shape[1]} channels, expected one')
-    if rate == 3 * RATE_HZ:
-        x = resample_poly(x, 1, 3)
-    elif rate != RATE_HZ:
-        sys.exit(f'{path}: {rate} Hz, expected {RATE_HZ} or {3 * RATE_HZ}')
-    return x / np.max(np.abs(x))
-
-
-def samples(ms):
-    return int(round(ms * RATE_HZ / 1000))
+# Octave bands, the top one cut below Nyquist.
+FILTERS = [butterworth_band(c / np.sqrt(2), min(c * np.sqrt(2), 0.95 * RATE_HZ / 2)) for c in CENTRES_HZ]
 
 
 def rir_tables(x):
     """(band x window levels in dB re peak^2, band x span decay rates in dB/s) of one RIR."""
-    onset = int(np.argmax(np.abs(x) >= 0.1))
+    start = onset(x)
     levels, rates = [], []
     frame = samples(FRAME_MS)
     for sos in FILTERS:
-        b = sosfiltfilt(sos, x) ** 2
-        levels.append([10 * np.log10(np.sum(b[max(0, onset + samples(a)):onset + samples(e)]) + 1e-30)
-                       for a, e in WINDOWS_MS])
+        band = sosfiltfilt(sos, x)
+        levels.append(window_levels_db(band, start, WINDOWS_MS))
+        b = band ** 2
         row = []
         for a, e in SLOPE_SPANS_MS:
-            starts = range(onset + samples(a), min(onset + samples(e), len(b) - frame) + 1, frame)
+            starts = range(start + samples(a), min(start + samples(e), len(b) - frame) + 1, frame)
             frames = np.array([10 * np.log10(np.mean(b[s:s + frame]) + 1e-30) for s in starts])
             if len(frames) < 3:
                 row.append(np.nan)
@@ -75,15 +55,6 @@ def rir_tables(x):
             row.append(np.polyfit(t_s, frames, 1)[0])
         rates.append(row)
     return np.array(levels), np.array(rates)
-
-
-def read_scp(path):
-    with open(path) as f:
-        rows = [line.split() for line in f if line.strip()]
-    for number, row in enumerate(rows, 1):
-        if len(row) != 2:
-            sys.exit(f'{path}:{number}: expected "<id> <wav path>"')
-    return [p for _, p in rows]
 
 
 def print_table(title, table, columns, width=11):

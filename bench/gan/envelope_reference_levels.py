@@ -5,7 +5,7 @@
 
 The envelope critic (src/gan/gan_band_envelope.h) reads each band's level per 32 ms Hann frame (hop
 8 ms) re one reference: the RIR's loudest cell (band x frame; --disc-view=waveform+envelope, the
-default) or the direct sound (--disc-view=waveform+direct-envelope). This script measures the same
+default) or the direct sound (--envelope-reference=direct-sound). This script measures the same
 two maps in its own formulation (octave bands as rectangular groups of FFT bins, not the critic's
 raised-cosine bands; the direct sound as the energy of the peak +-2.5 ms, in the units of a frame's
 power spectrum summed over its bins) and prints per set: in which band each RIR's loudest cell lies,
@@ -19,7 +19,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from band_window_levels import CENTRES_HZ, RATE_HZ, named_sets, print_table, read_rir, read_scp  # noqa: E402
+from band_window_levels import CENTRES_HZ, named_sets, print_table  # noqa: E402
+from rir_bands import RATE_HZ, read_rir, read_scp  # noqa: E402
 
 FRAME, HOP = 512, 128
 DIRECT_HALF = 40  # 2.5 ms

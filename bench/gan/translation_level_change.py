@@ -14,31 +14,20 @@ With --bands instead: the median change (translation - input, dB) of each octave
 onset, a table whose rows are bands and columns time windows: where in time and frequency a
 translation moves levels (a change meant for one band that also moves another shows up here).
 The onset is the first sample within 20 dB of the peak (as the generator's). Needs numpy and scipy
-(Debian python3-scipy); reads WAVs only, writes nothing.
+(Debian python3-scipy); reads WAVs only (16 kHz, or 48 kHz resampled 1:3: rir_bands.py), writes nothing.
 """
 import glob
 import os
 import sys
 
 import numpy as np
-from scipy.io import wavfile
-from scipy.signal import butter, sosfiltfilt
+from scipy.signal import sosfiltfilt
 
-RATE_HZ = 16000
-HIGH_PASS = butter(6, 2000, 'highpass', fs=RATE_HZ, output='sos')
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rir_bands import butterworth_band, onset, read_rir, window_levels_db  # noqa: E402
+
+HIGH_PASS = butterworth_band(2000, None)
 BEFORE, AFTER = 16, 40  # samples: 1 ms before the onset, 2.5 ms after it
-
-
-def peak_normalised(path):
-    rate, x = wavfile.read(path)
-    if rate != RATE_HZ:
-        sys.exit(f'{path}: {rate} Hz, expected {RATE_HZ}')
-    x = x.astype(float)
-    return x / np.max(np.abs(x))
-
-
-def onset(x):
-    return int(np.argmax(np.abs(x) >= 0.1))
 
 
 def high_band_levels_db(x):
@@ -55,26 +44,13 @@ BAND_EDGES_HZ = [(None, 200), (200, 500), (500, 1000), (1000, 2000), (2000, 4000
 WINDOWS_MS = [(-1, 2.5), (2.5, 20), (20, 50), (50, 100), (100, 200), (200, 400)]
 
 
-def band_filter(low, high):
-    if low is None:
-        return butter(6, high, 'lowpass', fs=RATE_HZ, output='sos')
-    if high is None:
-        return butter(6, low, 'highpass', fs=RATE_HZ, output='sos')
-    return butter(6, [low, high], 'bandpass', fs=RATE_HZ, output='sos')
-
-
 def band_window_levels_db(x):
-    on = onset(x)
-    levels = []
-    for low, high in BAND_EDGES_HZ:
-        b = sosfiltfilt(band_filter(low, high), x)
-        levels.append([10 * np.log10(np.sum(b[max(0, on + int(a * RATE_HZ / 1000)):on + int(e * RATE_HZ / 1000)] ** 2) + 1e-30)
-                       for a, e in WINDOWS_MS])
-    return np.array(levels)
+    return np.array([window_levels_db(sosfiltfilt(butterworth_band(low, high), x), onset(x), WINDOWS_MS)
+                     for low, high in BAND_EDGES_HZ])
 
 
 def print_band_table(work, pairs):
-    change = np.median([band_window_levels_db(peak_normalised(out)) - band_window_levels_db(peak_normalised(inp))
+    change = np.median([band_window_levels_db(read_rir(out)) - band_window_levels_db(read_rir(inp))
                         for inp, out in pairs], axis=0)
     print(f'{work}: median change, translation - input, dB ({len(pairs)} RIRs); rows: band, columns: ms after the onset')
     print('band (Hz)   ' + ''.join(f'{f"{a:g}..{e:g}":>11}' for a, e in WINDOWS_MS))
@@ -99,7 +75,7 @@ def main():
     for path in sorted(glob.glob(os.path.join(work, 'test_syn', '*.wav'))):
         out = os.path.join(work, 'sr', os.path.basename(path))
         if os.path.exists(out):
-            changes.append(high_band_levels_db(peak_normalised(out)) - high_band_levels_db(peak_normalised(path)))
+            changes.append(high_band_levels_db(read_rir(out)) - high_band_levels_db(read_rir(path)))
     if not changes:
         sys.exit(f'{work}: no translated RIR (sr/) matches an input (test_syn/)')
     changes = np.array(changes)
@@ -109,7 +85,7 @@ def main():
     for name in ['train_real', 'train_syn', 'test_syn', 'sr']:
         files = sorted(glob.glob(os.path.join(work, name, '*.wav')))
         if files:
-            level = np.median([after_direct_db(peak_normalised(f)) for f in files])
+            level = np.median([after_direct_db(read_rir(f)) for f in files])
             print(f'{work}: {name}: broadband energy after the direct window re peak^2, median {level:+.2f} dB ({len(files)} RIRs)')
 
 

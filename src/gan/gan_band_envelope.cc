@@ -46,22 +46,22 @@ torch::Tensor envelope_window() { return torch::hann_window(kEnvelopeFrameLength
 torch::Tensor envelope_band_responses() { return band_gain_response_tensor(kEnvelopeFrameLength); }
 
 torch::Tensor band_log_envelope(const torch::Tensor& x, const torch::Tensor& window, const torch::Tensor& responses,
-                                EnvelopeReference reference) {
+                                const GanEnvelopeMap& map) {
   const torch::Tensor signal = x.to(torch::kFloat).squeeze(1);  // [batch, n]
   const torch::Tensor frames = signal.unfold(-1, kEnvelopeFrameLength, kEnvelopeHop) * window;  // [batch, F, L]
   const torch::Tensor power = frame_power(frames);  // [batch, F, bins]
   const torch::Tensor energy = torch::matmul(responses, power.transpose(1, 2));  // [batch, bands, F]
-  // Relative to the reference, floored 80 dB below it: the same map at any gain.
-  const torch::Tensor level = reference == EnvelopeReference::kLoudestCell
+  // Relative to the reference, floored below it: the same map at any gain.
+  const torch::Tensor level = map.reference == GanEnvelopeReference::kLoudestCell
                                   ? std::get<0>(energy.flatten(1).max(1)).view({-1, 1, 1})
                                   : direct_sound_cell(signal, window);
-  const double floor = std::pow(10.0, kEnvelopeFloorDb / 10.0);
+  const double floor = std::pow(10.0, map.floor_db / 10.0);
   return torch::log10(energy / level.clamp_min(1e-30) + floor) * 0.5;  // 10 log10(.) / 20 dB
 }
 
 EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit init, EnvelopeCriticKind kind,
-                                       EnvelopeReference reference)
-    : kind_(kind), reference_(reference) {
+                                       const GanEnvelopeMap& map)
+    : kind_(kind), map_(map) {
   // Separable: each layer's channels are the bands' own groups, half the joint form's channels in
   // each band (5.5x the joint form's in all; the joint form's in each would be 11x).
   const int64_t groups = kind == EnvelopeCriticKind::kSeparable ? kBandGainBands : 1;
@@ -90,7 +90,7 @@ EnvelopeCriticImpl::EnvelopeCriticImpl(int width, int64_t slice_length, GanInit 
 }
 
 torch::Tensor EnvelopeCriticImpl::forward(const torch::Tensor& x) {
-  return logit_of_levels(band_log_envelope(x, window_, responses_, reference_).to(x.scalar_type()));
+  return logit_of_levels(band_log_envelope(x, window_, responses_, map_).to(x.scalar_type()));
 }
 
 torch::Tensor EnvelopeCriticImpl::logit_of_levels(const torch::Tensor& levels) {

@@ -326,7 +326,8 @@ GeneratorPass GeneratorImpl::pass(torch::Tensor x) {
   return result;
 }
 
-DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init, GanDiscView view) {
+DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init, GanDiscView view,
+                                     const GanEnvelopeMap& envelope_map) {
   int in = 1;
   for (int i = 0; i < 5; ++i) {
     const int out = width << i;
@@ -341,9 +342,7 @@ DiscriminatorImpl::DiscriminatorImpl(int width, int kernel_length, GanInit init,
   if (view != GanDiscView::kWaveform) {
     const EnvelopeCriticKind kind =
         view == GanDiscView::kWaveformSeparableEnvelope ? EnvelopeCriticKind::kSeparable : EnvelopeCriticKind::kJoint;
-    const EnvelopeReference reference =
-        view == GanDiscView::kWaveformDirectEnvelope ? EnvelopeReference::kDirectSound : EnvelopeReference::kLoudestCell;
-    envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init, kind, reference));
+    envelope_ = register_module("envelope", EnvelopeCritic(width, 16384, init, kind, envelope_map));
   }
 }
 
@@ -377,8 +376,8 @@ CycleGan::CycleGan(const GanSettings& s, torch::Device device) : settings(s) {
   const GanInit init = s.init;
   g_real = make_generator(s, init);
   g_synthetic = make_generator(s, init);
-  d_real = Discriminator(s.width, s.kernel_length, init, s.disc_view);
-  d_synthetic = Discriminator(s.width, s.kernel_length, init, s.disc_view);
+  d_real = Discriminator(s.width, s.kernel_length, init, s.disc_view, s.envelope_map);
+  d_synthetic = Discriminator(s.width, s.kernel_length, init, s.disc_view, s.envelope_map);
   torch::nn::Module* modules[4] = {g_real.get(), g_synthetic.get(), d_real.get(), d_synthetic.get()};
   for (auto* m : modules) {
     m->to(device);

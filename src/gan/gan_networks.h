@@ -156,12 +156,12 @@ TORCH_MODULE(Generator);
 // [length, channel] order, dense to one linear logit. Input [B, 1, 16384], output [B].
 // view kWaveformEnvelope (a departure): plus gan_band_envelope.h's critic of the band levels in
 // dB, whose logit is added to the waveform's; kWaveformSeparableEnvelope: the same with that critic's
-// per-band form (one critic per band, their logits averaged); kWaveformDirectEnvelope: the joint
-// critic reading levels re the direct sound (EnvelopeReference::kDirectSound).
+// per-band form (one critic per band, their logits averaged). `envelope_map`: how that critic maps
+// band energies to levels (its reference and floor; read only with an envelope view).
 class DiscriminatorImpl : public torch::nn::Module {
  public:
   DiscriminatorImpl(int width, int kernel_length, GanInit init = GanInit::kGlorot,
-                    GanDiscView view = GanDiscView::kWaveform);
+                    GanDiscView view = GanDiscView::kWaveform, const GanEnvelopeMap& envelope_map = {});
   torch::Tensor forward(torch::Tensor x);
 
  private:

@@ -21,7 +21,7 @@ const std::vector<std::string> kFileOrder = {
     "width", "kernel_length", "slice_length", "sample_rate_hz", "batch_size", "seed", "learning_rate",
     "disc_learning_rate", "disc_updates", "init", "cycle_weight", "identity_weight", "gain_weight",
     "identity_gain_weight", "identity_direct_bands", "identity_direct_weight", "rmsprop_initial_ms", "decoder", "generator", "correction_max_hz", "correction_weight", "generator_activation",
-    "generator_update", "disc_augment", "disc_view", "precision", "warmup_steps", "generator_average_decay", "real_list", "synthetic_list"};
+    "generator_update", "disc_augment", "disc_view", "envelope_reference", "envelope_floor_db", "precision", "warmup_steps", "generator_average_decay", "real_list", "synthetic_list"};
 
 SettingsStyle file_style() {
   SettingsStyle style;
@@ -45,7 +45,7 @@ SettingsFile every_key_file(GanSettings* settings) {
 SettingsFile bound_file(GanSettings* settings) {
   SettingsFile file = every_key_file(settings);
   GanSettings defaults;
-  file.OmitWhenDefault({"correction-weight", "disc-view", "identity-gain-weight", "identity-direct-bands", "identity-direct-weight", "generator-average-decay"}, every_key_file(&defaults).values());
+  file.OmitWhenDefault({"correction-weight", "disc-view", "envelope-reference", "envelope-floor-db", "identity-gain-weight", "identity-direct-bands", "identity-direct-weight", "generator-average-decay"}, every_key_file(&defaults).values());
   return file;
 }
 
@@ -118,9 +118,13 @@ void GanSettings::Register(OptionsItf* opts) {
                   "What the discriminators read (the paper: waveform); waveform+envelope adds a critic of each band's "
                   "level in dB per 8 ms frame, where an RIR's quiet late part (each band's decay) weighs as its start; "
                   "waveform+separable-envelope reads each band's levels on its own (one critic per band, their logits "
-                  "averaged), so that no band's verdict depends on another's; waveform+direct-envelope is "
-                  "waveform+envelope with the levels re the direct sound (the peak +-2.5 ms) instead of the RIR's "
-                  "loudest cell");
+                  "averaged), so that no band's verdict depends on another's");
+  opts->RegisterEnum("envelope-reference", &envelope_map.reference, kGanEnvelopeReferenceNames,
+                  "An envelope view's levels are re the RIR's loudest cell (loudest-cell) or re the direct sound "
+                  "(direct-sound: the peak +-2.5 ms as one cell of all bands would hold it)");
+  opts->Register("envelope-floor-db", &envelope_map.floor_db,
+                 "An envelope view's levels are floored this far below their reference (dB, in [-120, -20]): "
+                 "nothing below it is judged");
   opts->RegisterEnum("generator-update", &generator_update, kGanGeneratorUpdateNames,
                   "sequential (the paper: G_SR then G_RS, each on fresh batches) or joint (CycleGAN's "
                   "reference: both generators from one forward, one summed loss)");
@@ -161,6 +165,12 @@ void check_gan_settings(const GanSettings& s, const std::string& file) {
   require(s.warmup_steps >= 0, "warmup-steps", ">= 0");
   require(s.generator_average_decay >= 0 && s.generator_average_decay < 1, "generator-average-decay", "in [0, 1)");
   require(s.correction_max_hz >= 0 && s.correction_max_hz < 8000, "correction-max-hz", "in (0, 8000) or 0");
+  require(s.envelope_map.floor_db >= -120 && s.envelope_map.floor_db <= -20, "envelope-floor-db", "in [-120, -20]");
+  // A map no critic reads is a mistake the user should hear of, not a setting stored for nothing.
+  const GanEnvelopeMap first_form;
+  const bool map_asked = s.envelope_map.reference != first_form.reference || s.envelope_map.floor_db != first_form.floor_db;
+  require(!map_asked || s.disc_view != GanDiscView::kWaveform, "envelope-reference",
+          "left at loudest-cell, and --envelope-floor-db at -80, unless --disc-view has an envelope");
 }
 
 SettingsValues gan_settings_values(const GanSettings& settings) {
@@ -203,11 +213,17 @@ void write_gan_settings_file(const std::string& path, const GanSettings& setting
 }
 
 namespace {
+std::string envelope_map_text(const GanSettings& s) {
+  if (s.disc_view == GanDiscView::kWaveform) return "";
+  return " (levels re " + choice_name(kGanEnvelopeReferenceNames, s.envelope_map.reference) + ", floor " +
+         format_double(s.envelope_map.floor_db, 6) + " dB)";
+}
+
 std::string architecture_text(const GanSettings& s) {
   return "width " + std::to_string(s.width) + " (decoder " + choice_name(kGanDecoderNames, s.decoder) + ", generator " +
          choice_name(kGanGeneratorNames, s.generator) + ", correction max " + format_double(s.correction_max_hz, 6) +
          " Hz, activation " + choice_name(kGanActivationNames, s.generator_activation) +
-         ", discriminators' view " + choice_name(kGanDiscViewNames, s.disc_view) + ", kernel " +
+         ", discriminators' view " + choice_name(kGanDiscViewNames, s.disc_view) + envelope_map_text(s) + ", kernel " +
          std::to_string(s.kernel_length) + ")";
 }
 }  // namespace
@@ -218,7 +234,9 @@ void check_same_architecture(const GanSettings& expected, const GanSettings& fou
       expected.slice_length != found.slice_length || expected.sample_rate_hz != found.sample_rate_hz ||
       expected.decoder != found.decoder || expected.generator != found.generator ||
       expected.correction_max_hz != found.correction_max_hz ||
-      expected.generator_activation != found.generator_activation || expected.disc_view != found.disc_view) {
+      expected.generator_activation != found.generator_activation || expected.disc_view != found.disc_view ||
+      expected.envelope_map.reference != found.envelope_map.reference ||
+      expected.envelope_map.floor_db != found.envelope_map.floor_db) {
     throw Error(what + ": model " + architecture_text(found) + ", expected " + architecture_text(expected));
   }
 }

@@ -21,7 +21,8 @@ enum class GanGenerator { kOriginal, kResidual, kBandGain };
 enum class GanActivation { kRelu, kLeakyRelu };
 enum class GanGeneratorUpdate { kSequential, kJoint };
 enum class GanDiscAugment { kNone, kShiftGainPolarity };
-enum class GanDiscView { kWaveform, kWaveformEnvelope, kWaveformSeparableEnvelope, kWaveformDirectEnvelope };
+enum class GanDiscView { kWaveform, kWaveformEnvelope, kWaveformSeparableEnvelope };
+enum class GanEnvelopeReference { kLoudestCell, kDirectSound };
 enum class GanPrecision { kFloat32, kBfloat16 };
 
 inline const Choices<GanInit> kGanInitNames = {{"he", GanInit::kHe}, {"glorot", GanInit::kGlorot}};
@@ -37,10 +38,20 @@ inline const Choices<GanDiscAugment> kGanDiscAugmentNames = {
 inline const Choices<GanDiscView> kGanDiscViewNames = {
     {"waveform", GanDiscView::kWaveform},
     {"waveform+envelope", GanDiscView::kWaveformEnvelope},
-    {"waveform+separable-envelope", GanDiscView::kWaveformSeparableEnvelope},
-    {"waveform+direct-envelope", GanDiscView::kWaveformDirectEnvelope}};
+    {"waveform+separable-envelope", GanDiscView::kWaveformSeparableEnvelope}};
+inline const Choices<GanEnvelopeReference> kGanEnvelopeReferenceNames = {
+    {"loudest-cell", GanEnvelopeReference::kLoudestCell}, {"direct-sound", GanEnvelopeReference::kDirectSound}};
 inline const Choices<GanPrecision> kGanPrecisionNames = {{"float32", GanPrecision::kFloat32},
                                                          {"bfloat16", GanPrecision::kBfloat16}};
+
+// How an envelope view's critic maps band energies to levels (gan_band_envelope.h): re what, and
+// how far below it the map is floored. What a discriminator computes, so part of the architecture;
+// read only when disc_view has an envelope. Settings files without the keys: the first form's
+// (the RIR's loudest cell, 80 dB).
+struct GanEnvelopeMap {
+  GanEnvelopeReference reference = GanEnvelopeReference::kLoudestCell;
+  double floor_db = -80.0;
+};
 
 struct GanSettings {
   int width = 64;
@@ -133,6 +144,10 @@ struct GanSettings {
   // logits are summed. Part of the architecture (the discriminators' weights). Files without the
   // key: waveform.
   GanDiscView disc_view = GanDiscView::kWaveform;
+  // --envelope-reference, --envelope-floor-db (issue 34 item 3: on R3VIVAL the loudest cell, the 4 kHz
+  // band's first frame, is ~6 dB stronger in GAS than in the measured room, and below 60 dB the
+  // measured RIRs reach their noise floor inside the slice; docs/results/ts-rirgan-r3vival-seeds.md).
+  GanEnvelopeMap envelope_map;
   // Linear learning-rate warm-up over the first N steps (0: none, the original).
   long long warmup_steps = 0;
   // Both generators also keep an exponential moving average of their weights over the training

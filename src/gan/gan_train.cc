@@ -586,7 +586,7 @@ void validate(const GanTrainOptions& o) {
 // same data may have moved) and the initialisers (they only matter when a model is created);
 // compared on the settings text, so that a new setting is compared too.
 void check_resume_settings(const GanSettings& saved, const GanSettings& asked, const std::string& where) {
-  check_same_architecture(saved, asked, where + " (give the --width, --decoder and --generator it was trained with)");
+  check_same_architecture(saved, asked, where + " (give the --width, --decoder, --generator and --disc-view options it was trained with)");
   const std::set<std::string> may_change = {"learning_rate", "disc_learning_rate", "real_list", "synthetic_list",
                                             "init", "rmsprop_initial_ms"};
   const SettingsValues was = gan_settings_values(saved), now = gan_settings_values(asked);

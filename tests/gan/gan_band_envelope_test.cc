@@ -53,9 +53,11 @@ std::vector<double> decaying_noise(double t60_s, Shape shape, uint32_t seed) {
   return x;
 }
 
-torch::Tensor levels_of(const torch::Tensor& x, EnvelopeReference reference = EnvelopeReference::kLoudestCell) {
-  return band_log_envelope(x, envelope_window(), envelope_band_responses(), reference);
+torch::Tensor levels_of(const torch::Tensor& x, const GanEnvelopeMap& map = {}) {
+  return band_log_envelope(x, envelope_window(), envelope_band_responses(), map);
 }
+
+const GanEnvelopeMap kReDirectSound{GanEnvelopeReference::kDirectSound};
 
 torch::Tensor as_batch(const std::vector<double>& x) {
   return torch::tensor(x, torch::kFloat).view({1, 1, -1});
@@ -88,15 +90,16 @@ TEST(BandEnvelope, EachBandShowsItsOwnDecayRate) {
     EXPECT_NEAR(slope_db_per_s(levels, 0, 0.05, 0.6), -75.0, 7.5) << "seed " << seed;
     EXPECT_NEAR(slope_db_per_s(levels, kBandGainBands - 1, 0.03, 0.18), -300.0, 30.0) << "seed " << seed;
     EXPECT_LE(levels.max().item<double>(), 1e-6);
-    EXPECT_GE(levels.min().item<double>(), kEnvelopeFloorDb / 20.0 - 1e-6);
+    EXPECT_GE(levels.min().item<double>(), GanEnvelopeMap{}.floor_db / 20.0 - 1e-6);
   }
 }
 
 TEST(BandEnvelope, TheMapIsTheSameAtAnyGain) {
   const torch::Tensor x = as_batch(decaying_noise(0.5, Shape::kHigh, 7)) + as_batch(decaying_noise(0.3, Shape::kLow, 8));
-  for (EnvelopeReference reference : {EnvelopeReference::kLoudestCell, EnvelopeReference::kDirectSound}) {
-    const torch::Tensor a = levels_of(x, reference), b = levels_of(x * 0.01, reference);
-    const torch::Tensor c = levels_of(-3.0 * x, reference);
+  for (GanEnvelopeReference reference : {GanEnvelopeReference::kLoudestCell, GanEnvelopeReference::kDirectSound}) {
+    const GanEnvelopeMap map{reference};
+    const torch::Tensor a = levels_of(x, map), b = levels_of(x * 0.01, map);
+    const torch::Tensor c = levels_of(-3.0 * x, map);
     EXPECT_LT((a - b).abs().max().item<double>(), 1e-4);
     EXPECT_LT((a - c).abs().max().item<double>(), 1e-4);
   }
@@ -110,7 +113,7 @@ TEST(BandEnvelope, DirectSoundReferenceIsThePeaksEnergy) {
     std::vector<double> x(kLength, 0.0);
     const int64_t first = kEnvelopeFrameLength / 2 + kEnvelopeHop, second = first + 12 * kEnvelopeHop;
     x[first] = 1.0, x[second] = b;
-    const torch::Tensor levels = levels_of(as_batch(x), EnvelopeReference::kDirectSound);
+    const torch::Tensor levels = levels_of(as_batch(x), kReDirectSound);
     const auto frame_db = [&](int64_t f) {
       return 10.0 * std::log10(torch::pow(10.0, 2.0 * levels.select(2, f)).sum().item<double>());
     };
@@ -138,12 +141,29 @@ TEST(BandEnvelope, DirectSoundReferenceIgnoresWhichCellIsLoudest) {
     const torch::Tensor quiet = signal_with_burst(0.25), loud = signal_with_burst(1.0);
     ASSERT_EQ(quiet.abs().argmax().item<int64_t>(), 160);
     ASSERT_EQ(loud.abs().argmax().item<int64_t>(), 160);
-    const auto late_low_shift_db = [&](EnvelopeReference reference) {
-      const torch::Tensor a = levels_of(quiet, reference), b = levels_of(loud, reference);
+    const auto late_low_shift_db = [&](GanEnvelopeReference reference) {
+      const torch::Tensor a = levels_of(quiet, {reference}), b = levels_of(loud, {reference});
       return 20.0 * (b - a).select(1, 0).narrow(1, 13, 60).abs().max().item<double>();
     };
-    EXPECT_LT(late_low_shift_db(EnvelopeReference::kDirectSound), 1e-3) << "seed " << seed;
-    EXPECT_GT(late_low_shift_db(EnvelopeReference::kLoudestCell), 6.0) << "seed " << seed;
+    EXPECT_LT(late_low_shift_db(GanEnvelopeReference::kDirectSound), 1e-3) << "seed " << seed;
+    EXPECT_GT(late_low_shift_db(GanEnvelopeReference::kLoudestCell), 6.0) << "seed " << seed;
+  }
+}
+
+TEST(BandEnvelope, NothingBelowTheFloorIsToldApart) {
+  // White noise decaying 60 dB in 0.3 s falls ~200 dB over the slice. The map is 10 log10(E / ref +
+  // 10^(floor / 10)): where the first form (80 dB) reads above -40 dB, a 60 dB floor adds at most
+  // 10 log10(1 + 10^-2) = 0.04 dB; where it reads below -78 dB (the true level 2.3+ dB under its
+  // floor), the 60 dB map reads its floor within 10 log10(1 + 10^-1.8) = 0.07 dB. Over seeds.
+  for (uint32_t seed : {31u, 32u, 33u}) {
+    const torch::Tensor x = as_batch(decaying_noise(0.3, Shape::kWhite, seed));
+    const torch::Tensor first_form = 20.0 * levels_of(x), at_60 = 20.0 * levels_of(x, {GanEnvelopeReference::kLoudestCell, -60.0});
+    const torch::Tensor loud = first_form > -40.0, quiet = first_form < -78.0;
+    ASSERT_GT(loud.sum().item<int64_t>(), 100);
+    ASSERT_GT(quiet.sum().item<int64_t>(), 100);
+    EXPECT_LT((at_60 - first_form).masked_select(loud).abs().max().item<double>(), 0.045) << "seed " << seed;
+    EXPECT_LT((at_60 + 60.0).masked_select(quiet).abs().max().item<double>(), 0.07) << "seed " << seed;
+    EXPECT_GE(at_60.min().item<double>(), -60.0 - 1e-3) << "seed " << seed;
   }
 }
 
@@ -190,11 +210,12 @@ void expect_waveform_weights_kept(Discriminator& plain, Discriminator& with_view
 
 // A waveform-only discriminator and one with `view`, each built from `seed`; their shared waveform
 // layers checked equal.
-std::pair<Discriminator, Discriminator> plain_and_with_view(GanDiscView view, uint64_t seed) {
+std::pair<Discriminator, Discriminator> plain_and_with_view(GanDiscView view, uint64_t seed,
+                                                           const GanEnvelopeMap& map = {}) {
   torch::manual_seed(seed);
   Discriminator plain(4, 25, GanInit::kHe, GanDiscView::kWaveform);
   torch::manual_seed(seed);
-  Discriminator with_view(4, 25, GanInit::kHe, view);
+  Discriminator with_view(4, 25, GanInit::kHe, view, map);
   expect_waveform_weights_kept(plain, with_view);
   return {plain, with_view};
 }
@@ -264,23 +285,26 @@ TEST(BandEnvelope, SeparableViewKeepsTheWaveformCriticAndIsSelectable) {
             GanDiscView::kWaveformSeparableEnvelope);
 }
 
-TEST(BandEnvelope, DirectViewKeepsTheWaveformCriticAndReadsLevelsReTheDirectSound) {
-  auto [plain, direct] = plain_and_with_view(GanDiscView::kWaveformDirectEnvelope, 7);
-  auto q = direct->named_parameters();
-  EXPECT_TRUE(q.contains("envelope.envelope_output.weight"));  // the joint critic
-  // Its logit is the waveform's plus that of the joint critic reading the levels re the direct
-  // sound: a joint critic given the view's weights reproduces it from those levels, not from the
-  // loudest cell's.
-  torch::NoGradGuard no_grad;
-  EnvelopeCritic joint(4, kLength, GanInit::kHe);
-  for (auto& item : joint->named_parameters()) item.value().copy_(q["envelope." + item.key()]);
+TEST(BandEnvelope, TheViewReadsLevelsThroughItsMap) {
+  // A discriminator's envelope logit is its waveform logit's difference from a plain one's; a
+  // joint critic given the view's weights reproduces it from the levels of the view's own map (its
+  // reference and floor), not from the first form's (the control that the two maps differ here).
   torch::Tensor x = torch::randn({3, 1, kLength}) * 0.01;
   x.select(2, 200).fill_(1.0);  // a direct sound
-  const torch::Tensor envelope_part = direct->forward(x) - plain->forward(x);
-  const torch::Tensor by_direct = joint->logit_of_levels(levels_of(x, EnvelopeReference::kDirectSound));
-  const torch::Tensor by_loudest = joint->logit_of_levels(levels_of(x, EnvelopeReference::kLoudestCell));
-  EXPECT_LT((envelope_part - by_direct).abs().max().item<double>(), 1e-4);
-  EXPECT_GT((envelope_part - by_loudest).abs().max().item<double>(), 1e-3);  // the maps differ here
-  EXPECT_EQ(parse_choice(kGanDiscViewNames, "waveform+direct-envelope", "--disc-view"),
-            GanDiscView::kWaveformDirectEnvelope);
+  x.narrow(2, 8000, kLength - 8000).mul_(1e-3);  // a late part 60 dB down, where the floors differ
+  for (const GanEnvelopeMap& map : {kReDirectSound, GanEnvelopeMap{GanEnvelopeReference::kLoudestCell, -60.0}}) {
+    auto [plain, with_map] = plain_and_with_view(GanDiscView::kWaveformEnvelope, 7, map);
+    auto q = with_map->named_parameters();
+    EXPECT_TRUE(q.contains("envelope.envelope_output.weight"));  // the joint critic
+    torch::NoGradGuard no_grad;
+    EnvelopeCritic joint(4, kLength, GanInit::kHe);
+    for (auto& item : joint->named_parameters()) item.value().copy_(q["envelope." + item.key()]);
+    const torch::Tensor envelope_part = with_map->forward(x) - plain->forward(x);
+    const torch::Tensor by_its_map = joint->logit_of_levels(levels_of(x, map));
+    const torch::Tensor by_first_form = joint->logit_of_levels(levels_of(x));
+    EXPECT_LT((envelope_part - by_its_map).abs().max().item<double>(), 1e-4);
+    EXPECT_GT((envelope_part - by_first_form).abs().max().item<double>(), 1e-3);
+  }
+  EXPECT_EQ(parse_choice(kGanEnvelopeReferenceNames, "direct-sound", "--envelope-reference"),
+            GanEnvelopeReference::kDirectSound);
 }

@@ -187,6 +187,11 @@ TEST_F(GanCli, BadTrainingInput) {
           dir_);
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("width 2"), std::string::npos) << r.err;
+  // So is resuming with another envelope map (what the discriminators compute), both maps named.
+  r = run(train("--steps=2 --envelope-floor-db=-60 --resume", "m"), dir_);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("floor -80 dB"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("floor -60 dB"), std::string::npos) << r.err;
 }
 
 TEST_F(GanCli, LongRirsAreCroppedWithWarning) {

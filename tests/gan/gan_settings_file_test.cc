@@ -101,6 +101,8 @@ TEST(GanSettingsFile, KeysAFileLacksKeepThePapersValues) {
   EXPECT_EQ(first.disc_augment, GanDiscAugment::kNone);
   EXPECT_EQ(first.warmup_steps, 0);
   EXPECT_EQ(first.generator_average_decay, 0.0);  // no average: the last weights translate
+  EXPECT_EQ(first.envelope_map.reference, GanEnvelopeReference::kLoudestCell);  // the first envelope map
+  EXPECT_EQ(first.envelope_map.floor_db, -80.0);
 }
 
 // A new option in GanSettings::Register is a new key of the file with no other edit.
@@ -110,6 +112,7 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
   s.Register(&recorder);
   s.correction_weight = 0.5;  // written only away from its default (added after files were written)
   s.disc_view = GanDiscView::kWaveformEnvelope;  // likewise
+  s.envelope_map = {GanEnvelopeReference::kDirectSound, -60.0};  // likewise
   s.identity_gain_weight = 2;  // likewise
   s.identity_direct_bands = 0, s.identity_direct_weight = 0.5;  // likewise
   s.generator_average_decay = 0.99;  // likewise
@@ -134,6 +137,10 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     s.generator_update = kGanGeneratorUpdateNames[k % 2].second;
     s.disc_augment = kGanDiscAugmentNames[k % 2].second, s.precision = kGanPrecisionNames[k % 2].second;
     s.disc_view = kGanDiscViewNames[k % kGanDiscViewNames.size()].second;
+    // A map away from the first form only with an envelope view (check_gan_settings).
+    s.envelope_map = s.disc_view == GanDiscView::kWaveform
+                         ? GanEnvelopeMap{}
+                         : GanEnvelopeMap{kGanEnvelopeReferenceNames[k % 2].second, k % 2 ? -80.0 : -60.25};
     s.real_list = "a b/real.scp", s.synthetic_list = "";
     const std::string text = gan_settings_text(s);
     const GanSettings back = parse_gan_settings(text, "written");
@@ -146,6 +153,11 @@ TEST(GanSettingsFile, EveryRegisteredOptionIsAKeyAndEveryValueReadsBack) {
     EXPECT_EQ(back.precision, s.precision);
     EXPECT_EQ(back.disc_view, s.disc_view);
     EXPECT_EQ(text.find("disc_view") != std::string::npos, s.disc_view != GanDiscView::kWaveform);
+    EXPECT_EQ(back.envelope_map.reference, s.envelope_map.reference);
+    EXPECT_EQ(back.envelope_map.floor_db, s.envelope_map.floor_db);
+    EXPECT_EQ(text.find("envelope_reference") != std::string::npos,
+              s.envelope_map.reference != GanEnvelopeReference::kLoudestCell);
+    EXPECT_EQ(text.find("envelope_floor_db") != std::string::npos, s.envelope_map.floor_db != -80.0);
     EXPECT_EQ(back.identity_gain_weight, s.identity_gain_weight);
     EXPECT_EQ(text.find("identity_gain_weight") != std::string::npos, s.identity_gain_weight != 0.0);
     EXPECT_EQ(back.identity_direct_bands, s.identity_direct_bands);
@@ -173,6 +185,12 @@ TEST(GanSettingsFile, ErrorsNameTheFileAndLine) {
   EXPECT_NE(error_of(head + "warmup_steps -1\n").find("warmup_steps"), std::string::npos);
   EXPECT_NE(error_of(head + "identity_gain_weight -1\n").find("identity_gain_weight"), std::string::npos);
   EXPECT_NE(error_of(head + "identity_direct_bands 12\n").find("identity_direct_bands"), std::string::npos);
+  const std::string envelope = head + "disc_view waveform+envelope\n";
+  EXPECT_NE(error_of(envelope + "envelope_floor_db -10\n").find("envelope_floor_db"), std::string::npos);
+  EXPECT_NE(error_of(envelope + "envelope_reference direct\n").find("direct-sound"), std::string::npos);
+  // A map no critic reads is refused, not stored for nothing.
+  EXPECT_NE(error_of(head + "envelope_reference direct-sound\n").find("envelope_reference"), std::string::npos);
+  EXPECT_NE(error_of(head + "envelope_floor_db -60\n").find("envelope_reference"), std::string::npos);
   EXPECT_NE(error_of(head + "identity_direct_weight -1\n").find("identity_direct_weight"), std::string::npos);
   EXPECT_NE(error_of(head + "generator_average_decay 1\n").find("generator_average_decay must be in [0, 1)"), std::string::npos);
   EXPECT_NE(error_of(head + "generator_average_decay -0.5\n").find("generator_average_decay"), std::string::npos);
