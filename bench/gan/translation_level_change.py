@@ -42,11 +42,12 @@ def after_direct_db(x):
 
 BAND_EDGES_HZ = [(None, 200), (200, 500), (500, 1000), (1000, 2000), (2000, 4000), (4000, None)]
 WINDOWS_MS = [(-1, 2.5), (2.5, 20), (20, 50), (50, 100), (100, 200), (200, 400)]
+BAND_FILTERS = [butterworth_band(low, high) for low, high in BAND_EDGES_HZ]
 
 
 def band_window_levels_db(x):
-    return np.array([window_levels_db(sosfiltfilt(butterworth_band(low, high), x), onset(x), WINDOWS_MS)
-                     for low, high in BAND_EDGES_HZ])
+    start = onset(x)
+    return np.array([window_levels_db(sosfiltfilt(sos, x), start, WINDOWS_MS) for sos in BAND_FILTERS])
 
 
 def print_band_table(work, pairs):
